@@ -1,0 +1,11 @@
+"""cablefem: finite element mooring lines and marine cables on real seabeds.
+
+The line is a field r(s) in R^3 over unstretched arc length s (desire2023
+Eq. 1), discretised with scikit-fem; seabeds live in ``cablefem.geometry``.
+"""
+
+from .errors import ConvergenceError, InputError
+from .line import Line, LineType, Segment
+
+__all__ = ["ConvergenceError", "InputError", "Line", "LineType", "Segment"]
+__version__ = "0.1.0"

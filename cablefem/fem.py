@@ -1,0 +1,206 @@
+"""scikit-fem discretisation of one line over its unstretched arc length.
+
+The mesh is a ``MeshLine`` on [0, L] with vertices at the segment
+boundaries; the unknown is the position r(s) in R^3, an ``ElementVector``
+of ``ElementLineP1``, ``ElementLineP2`` or ``ElementLinePp(p)`` with three
+components (desire2023 Sec. 2.1.2, here of any order).
+
+scikit-fem orders the vector DOFs component-fastest (DOF 3 i + c is
+component c of scalar DOF i), so a state is an array X of shape (N, 3) whose
+first rows are the vertex positions, anchor first; for P3 and up the other
+rows are the hierarchical (integrated Legendre) coefficients of the element
+interiors. Everything that does not change between Newton iterations
+(basis values, quadrature, the sparsity pattern and the scatter maps) is
+computed once here.
+"""
+
+import warnings
+
+import numpy as np
+import scipy.sparse as sp
+from skfem import Basis, BilinearForm, ElementLineP1, ElementLineP2, ElementLinePp, ElementVector, MeshLine
+
+
+def scalar_element(order):
+    """The scikit-fem line element of polynomial ``order``."""
+    if order == 1:
+        return ElementLineP1()
+    if order == 2:
+        return ElementLineP2()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return ElementLinePp(order)
+
+
+@BilinearForm
+def _unit_mass(u, v, w):
+    return u * v
+
+
+class LineFEM:
+    """Mesh, bases, quadrature data and assembly maps of one ``Line``.
+
+    Arrays at quadrature points use scikit-fem's shapes: (3, n_elements,
+    n_quadrature) for vectors and (3, 3, n_elements, n_quadrature) for the
+    Jacobian blocks.
+    """
+
+    def __init__(self, line, quadrature_points=None):
+        self.line = line
+        self.order = line.order
+        self.mesh = MeshLine(line.node_arc_lengths())
+        element = scalar_element(self.order)
+        n_gauss = quadrature_points or self.order + 1
+        self.basis = Basis(self.mesh, ElementVector(element, dim=3), intorder=2 * n_gauss - 1)
+        self.scalar_basis = Basis(self.mesh, element, quadrature=self.basis.quadrature)
+        sb = self.scalar_basis
+        self.n_dofs = sb.N
+        self.n_vertices = self.mesh.p.shape[1]
+        self.n_elements = self.mesh.t.shape[1]
+        self.element_dofs = np.ascontiguousarray(sb.element_dofs.T)  # (nel, nloc)
+        self.phi = np.array([np.asarray(b[0]) for b in sb.basis])  # (nloc, nel, nq)
+        self.dphi = np.array([b[0].grad[0] for b in sb.basis])  # d/ds, (nloc, nel, nq)
+        self.dx = sb.dx  # quadrature weight x Jacobian, (nel, nq)
+        self.s = np.asarray(sb.global_coordinates())[0]  # arc length at quadrature points, (nel, nq)
+        self.segment = line.element_segments()  # (nel,)
+        self.anchor_dof = 0
+        self.fairlead_dof = self.n_vertices - 1
+        fixed = np.zeros(self.n_dofs, dtype=bool)
+        fixed[[self.anchor_dof, self.fairlead_dof]] = True
+        self.free_dofs = np.flatnonzero(~fixed)
+        self._build_scatter()
+        self.unit_mass = _unit_mass.assemble(sb).tocsr()  # int phi_i phi_j ds, (N, N)
+
+    # ------------------------------------------------------------------ maps
+    def _build_scatter(self):
+        nel, nloc = self.element_dofs.shape
+        # vectors: local (nel, nloc) -> global rows, summed by one sparse product
+        cols = np.arange(nel * nloc)
+        self._scatter = sp.csr_matrix(
+            (np.ones(nel * nloc), (self.element_dofs.ravel(), cols)), shape=(self.n_dofs, nel * nloc))
+        # matrices: local entry (e, l, a, m, b) -> CSR data index of the full and free systems
+        comp = np.arange(3)
+        rows = (3 * self.element_dofs[:, :, None, None, None] + comp[None, None, :, None, None])
+        colz = (3 * self.element_dofs[:, None, None, :, None] + comp[None, None, None, None, :])
+        rows, colz = np.broadcast_arrays(rows, colz)
+        self._full = _CsrPattern(rows.ravel(), colz.ravel(), 3 * self.n_dofs)
+        free_index = -np.ones(3 * self.n_dofs, dtype=np.int64)
+        free_vec = (3 * self.free_dofs[:, None] + comp).ravel()
+        free_index[free_vec] = np.arange(free_vec.size)
+        self.free_vector_dofs = free_vec
+        r, c = free_index[rows.ravel()], free_index[colz.ravel()]
+        keep = (r >= 0) & (c >= 0)
+        self._free = _CsrPattern(r[keep], c[keep], free_vec.size, keep)
+
+    # ----------------------------------------------------------- evaluation
+    def at_quadrature(self, X):
+        """Values and arc-length derivatives of X (N, 3) at quadrature points, each (3, nel, nq)."""
+        Xe = X[self.element_dofs]  # (nel, nloc, 3)
+        return np.einsum("elc,leq->ceq", Xe, self.phi), np.einsum("elc,leq->ceq", Xe, self.dphi)
+
+    def evaluate(self, X, s):
+        """Positions (n, 3) of state X (N, 3) at unstretched arc lengths s (n,) [m]."""
+        values, _ = self._local_basis(s)
+        element, _ = self._locate(s)
+        return np.einsum("nl,nlc->nc", values, X[self.element_dofs[element]])
+
+    def derivative(self, X, s):
+        """Tangent dr/ds (n, 3) of state X at arc lengths s (n,), taken inside the element holding s."""
+        _, grads = self._local_basis(s)
+        element, _ = self._locate(s)
+        return np.einsum("nl,nlc->nc", grads, X[self.element_dofs[element]])
+
+    def _locate(self, s):
+        s = np.atleast_1d(np.asarray(s, dtype=float))
+        nodes = self.mesh.p[0]
+        element = np.clip(np.searchsorted(nodes, s, side="right") - 1, 0, self.n_elements - 1)
+        left, right = nodes[self.mesh.t[0, element]], nodes[self.mesh.t[1, element]]
+        return element, (s - left) / (right - left)
+
+    def _local_basis(self, s):
+        element, xi = self._locate(s)
+        h = np.diff(self.mesh.p[0])[element]
+        el = self.scalar_basis.elem
+        vals, grads = [], []
+        for i in range(self.phi.shape[0]):
+            v, g = el.lbasis(xi[None, :], i)
+            vals.append(v)
+            grads.append(g[0] / h)
+        return np.array(vals).T, np.array(grads).T
+
+    def interpolate(self, positions):
+        """State X (N, 3) reproducing ``positions(s) -> (n, 3)`` at the vertices and, inside
+        each element, its L2 projection (exact for polynomials of the element's order)."""
+        X = np.zeros((self.n_dofs, 3))
+        X[: self.n_vertices] = positions(self.mesh.p[0])
+        if self.n_dofs == self.n_vertices:
+            return X
+        target, _ = self.at_quadrature_positions(positions)
+        vertex_part, _ = self.at_quadrature(X)
+        interior = self.element_dofs[:, 2:]
+        phi_b = self.phi[2:]
+        mass = np.einsum("ieq,jeq,eq->eij", phi_b, phi_b, self.dx)
+        rhs = np.einsum("ieq,ceq,eq->eic", phi_b, target - vertex_part, self.dx)
+        X[interior] = np.linalg.solve(mass, rhs)
+        return X
+
+    def at_quadrature_positions(self, positions):
+        """A function of arc length (n,) -> (n, 3) evaluated at quadrature points, (3, nel, nq)."""
+        values = positions(self.s.ravel())
+        return values.T.reshape(3, *self.s.shape), None
+
+    # ------------------------------------------------------------- assembly
+    def assemble_vector(self, force=None, flux=None):
+        """Residual rows (N, 3): int (flux . phi' - force . phi) ds over all elements."""
+        local = 0.0
+        if flux is not None:
+            local = local + np.einsum("ceq,leq,eq->elc", flux, self.dphi, self.dx)
+        if force is not None:
+            local = local - np.einsum("ceq,leq,eq->elc", force, self.phi, self.dx)
+        if np.isscalar(local):
+            return np.zeros((self.n_dofs, 3))
+        return self._scatter @ local.reshape(-1, 3)
+
+    def element_matrices(self, value_value=None, value_grad=None, grad_value=None, grad_grad=None):
+        """Local matrices (nel, nloc, 3, nloc, 3) of int v.(A u + B u') + v'.(C u + D u') ds
+        for the blocks A, B, C, D given as (3, 3, nel, nq) arrays (None for zero)."""
+        nel, nloc = self.element_dofs.shape
+        out = np.zeros((nel, nloc, 3, nloc, 3))
+        pairs = ((value_value, self.phi, self.phi), (value_grad, self.phi, self.dphi),
+                 (grad_value, self.dphi, self.phi), (grad_grad, self.dphi, self.dphi))
+        for block, test, trial in pairs:
+            if block is not None:
+                weighted = block * self.dx
+                out += np.einsum("leq,abeq,meq->elamb", test, weighted, trial, optimize=True)
+        return out
+
+    def assemble_matrix(self, local, free_only=True):
+        """Sparse CSR matrix from local matrices; restricted to the free DOFs by default."""
+        pattern = self._free if free_only else self._full
+        return pattern.matrix(local.ravel())
+
+    def vector_mass(self, density, free_only=True):
+        """Consistent mass matrix int m phi_i phi_j ds I_3 for mass per length ``density`` (nel,)."""
+        local = np.einsum("leq,eq,meq,e->elm", self.phi, self.dx, self.phi, density)
+        eye = np.eye(3)
+        return self.assemble_matrix(np.einsum("elm,ab->elamb", local, eye), free_only)
+
+
+class _CsrPattern:
+    """Fixed CSR sparsity of a matrix assembled from many (row, col) contributions."""
+
+    def __init__(self, rows, cols, size, keep=None):
+        keys = rows.astype(np.int64) * size + cols
+        unique, self.index = np.unique(keys, return_inverse=True)
+        self.indices = (unique % size).astype(np.int32)
+        self.indptr = np.concatenate([[0], np.cumsum(np.bincount(unique // size, minlength=size))]).astype(np.int32)
+        self.size = size
+        self.nnz = unique.size
+        self.keep = keep
+
+    def matrix(self, values):
+        """CSR matrix summing ``values`` (one per contribution) into the pattern."""
+        if self.keep is not None:
+            values = values[self.keep]
+        data = np.bincount(self.index, weights=values, minlength=self.nnz)
+        return sp.csr_matrix((data, self.indices, self.indptr), shape=(self.size, self.size))

@@ -1,0 +1,151 @@
+"""Line model: line types and multi-segment lines over unstretched arc length.
+
+A line runs from its anchor (s = 0) to its fairlead (s = L); each segment has
+its own line type (chain, polyester rope, ...) and element count, and the
+FEM mesh has nodes at the segment boundaries (desire2023 Sec. 2.1).
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import InputError
+
+
+def _positive(value, key, allow_zero=False):
+    """A finite float > 0 (or >= 0); InputError naming the key otherwise."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
+        raise InputError(f"expected a number, got {value!r}", key=key)
+    value = float(value)
+    if not math.isfinite(value):
+        raise InputError(f"must be finite, got {value}", key=key)
+    if value < 0 or (value == 0 and not allow_zero):
+        bound = ">= 0" if allow_zero else "> 0"
+        raise InputError(f"must be {bound}, got {value:g}", key=key)
+    return value
+
+
+def _point(value, key):
+    """A finite 3-vector as a float array of shape (3,)."""
+    try:
+        point = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(f"expected 3 numbers, got {value!r}", key=key) from None
+    if point.shape != (3,):
+        raise InputError(f"expected 3 numbers, got {value!r}", key=key)
+    if not np.all(np.isfinite(point)):
+        raise InputError(f"must be finite, got {value!r}", key=key)
+    return point
+
+
+@dataclass(frozen=True)
+class LineType:
+    """Material and hydrodynamic properties of one kind of line (SI units).
+
+    ``diameter`` is the volume-equivalent diameter [m] used for buoyancy,
+    drag and seabed contact; ``mass`` is the mass in air per unit unstretched
+    length [kg/m]; ``EA`` the axial stiffness [N]; ``damping`` is beta [s] in
+    T = EA (e + beta de/dt) (desire2023 Eq. 2).
+    """
+
+    name: str
+    diameter: float
+    mass: float
+    EA: float
+    damping: float = 0.0
+    Cd_normal: float = 1.2
+    Cd_tangential: float = 0.0
+    Ca_normal: float = 1.0
+    Ca_tangential: float = 0.0
+
+    def __post_init__(self):
+        for key in ("diameter", "mass", "EA"):
+            object.__setattr__(self, key, _positive(getattr(self, key), key))
+        for key in ("damping", "Cd_normal", "Cd_tangential", "Ca_normal", "Ca_tangential"):
+            object.__setattr__(self, key, _positive(getattr(self, key), key, allow_zero=True))
+
+    @property
+    def area(self):
+        """Volume-equivalent cross-section area [m^2]."""
+        return math.pi * self.diameter**2 / 4.0
+
+    def submerged_weight(self, water_density, gravity):
+        """Weight in water per unit unstretched length [N/m] (negative: buoyant)."""
+        return (self.mass - water_density * self.area) * gravity
+
+
+@dataclass(frozen=True)
+class Segment:
+    """A stretch of one line type: unstretched ``length`` [m] over ``elements`` elements."""
+
+    type: LineType
+    length: float
+    elements: int
+
+    def __post_init__(self):
+        object.__setattr__(self, "length", _positive(self.length, "length"))
+        if isinstance(self.elements, bool) or not isinstance(self.elements, (int, np.integer)):
+            raise InputError(f"expected a whole number, got {self.elements!r}", key="elements")
+        if self.elements < 1:
+            raise InputError(f"must be at least 1, got {self.elements}", key="elements")
+
+
+@dataclass(frozen=True)
+class Line:
+    """A line from ``anchor`` (s = 0) to ``fairlead`` (s = L), segments listed anchor first.
+
+    ``order`` is the polynomial order of the finite elements (1, 2, 3, ...).
+    """
+
+    name: str
+    anchor: np.ndarray
+    fairlead: np.ndarray
+    segments: tuple
+    order: int = 1
+
+    def __post_init__(self):
+        object.__setattr__(self, "anchor", _point(self.anchor, "anchor"))
+        object.__setattr__(self, "fairlead", _point(self.fairlead, "fairlead"))
+        segments = tuple(self.segments)
+        if not segments:
+            raise InputError("a line needs at least one segment", key="segments")
+        object.__setattr__(self, "segments", segments)
+        if isinstance(self.order, bool) or not isinstance(self.order, (int, np.integer)) or self.order < 1:
+            raise InputError(f"must be a whole number >= 1, got {self.order!r}", key="order")
+
+    @property
+    def unstretched_length(self):
+        """Total unstretched length L [m]."""
+        return float(sum(seg.length for seg in self.segments))
+
+    @property
+    def segment_bounds(self):
+        """Arc lengths of the segment ends, shape (n_segments + 1,), from 0 to L [m]."""
+        return np.concatenate([[0.0], np.cumsum([seg.length for seg in self.segments])])
+
+    def node_arc_lengths(self):
+        """Arc length of every mesh vertex, shape (n_elements + 1,), uniform within segments [m]."""
+        bounds = self.segment_bounds
+        pieces = [np.linspace(bounds[i], bounds[i + 1], seg.elements + 1)[:-1]
+                  for i, seg in enumerate(self.segments)]
+        return np.concatenate(pieces + [[bounds[-1]]])
+
+    def element_segments(self):
+        """Index of the segment each element belongs to, shape (n_elements,)."""
+        return np.repeat(np.arange(len(self.segments)), [seg.elements for seg in self.segments])
+
+    def chord_strain(self):
+        """Strain a straight line from anchor to fairlead would need (negative if slack)."""
+        return float(np.linalg.norm(self.fairlead - self.anchor) / self.unstretched_length - 1.0)
+
+    def with_order(self, order):
+        """The same line with another element order."""
+        return Line(self.name, self.anchor, self.fairlead, self.segments, order)
+
+    def with_elements(self, elements):
+        """The same line with ``elements`` elements spread over the segments by length."""
+        total = self.unstretched_length
+        counts = [max(1, round(elements * seg.length / total)) for seg in self.segments]
+        segments = tuple(Segment(seg.type, seg.length, n) for seg, n in zip(self.segments, counts))
+        return Line(self.name, self.anchor, self.fairlead, segments, self.order)

@@ -1,0 +1,68 @@
+"""Loads on a line: one module per physical force, composed by a scene.
+
+A load is an object with ``evaluate(state, jacobian) -> Terms``: it takes the
+kinematics at the quadrature points and returns a force per unit unstretched
+length (entering the weak form as -int f . phi ds) and/or a flux (the
+internal force, entering as int N . phi' ds), with their derivatives when
+``jacobian`` is true. The solver knows nothing of which loads exist.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass
+class State:
+    """Kinematics at quadrature points, each (3, n_elements, n_quadrature) [SI].
+
+    r: position, dr: dr/ds; v, dv: velocity and its s-derivative (None in
+    statics); a: acceleration (None unless an integrator supplies it); t: time [s].
+    """
+
+    r: np.ndarray
+    dr: np.ndarray
+    v: np.ndarray | None = None
+    dv: np.ndarray | None = None
+    a: np.ndarray | None = None
+    t: float = 0.0
+
+
+@dataclass
+class Terms:
+    """What a load contributes at quadrature points.
+
+    force, flux: (3, nel, nq). Jacobian blocks (3, 3, nel, nq), block[a, b] =
+    d(component a) / d(variable b): force_r, force_dr, force_v, force_dv,
+    force_a, flux_dr, flux_dv. None means zero.
+    """
+
+    force: np.ndarray | None = None
+    flux: np.ndarray | None = None
+    force_r: np.ndarray | None = None
+    force_dr: np.ndarray | None = None
+    force_v: np.ndarray | None = None
+    force_dv: np.ndarray | None = None
+    force_a: np.ndarray | None = None
+    flux_dr: np.ndarray | None = None
+    flux_dv: np.ndarray | None = None
+
+
+def outer(a, b):
+    """Pointwise outer products of (3, ...) arrays, shape (3, 3, ...)."""
+    return a[:, None] * b[None, :]
+
+
+def identity_like(x):
+    """The 3x3 identity broadcast to the trailing shape of x (3, ...)."""
+    eye = np.eye(3).reshape((3, 3) + (1,) * (x.ndim - 1))
+    return np.broadcast_to(eye, (3, 3) + x.shape[1:])
+
+
+def add(a, b):
+    """Sum of two optional arrays (None is zero)."""
+    if a is None:
+        return b
+    if b is None:
+        return a
+    return a + b

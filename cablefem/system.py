@@ -1,0 +1,142 @@
+"""The discrete system of one line: FEM + the loads a scene needs, as residual and tangent.
+
+The residual of the weak form of desire2023 Eq. 1 over unstretched arc
+length is
+
+    G(X) = int (N . phi' - f . phi) ds  (+ M a in dynamics),
+
+with the flux N and the force f summed over the loads. The line's own
+anchor and fairlead rows are the reactions: the force the line exerts on a
+support is -G at that vertex. "Model only what a scene needs": statics gets
+tension, weight and seabed contact; dynamics adds the rest.
+"""
+
+import numpy as np
+
+from . import forms
+from .fem import LineFEM
+from .loads import State, add
+from .loads.contact import SeabedContact
+from .loads.gravity import Weight
+from .loads.tension import Tension, axial_tension
+
+
+def element_properties(line):
+    """Per-element line-type properties, each an array of shape (n_elements,)."""
+    types = [seg.type for seg in line.segments]
+    index = line.element_segments()
+    names = ("diameter", "mass", "EA", "damping", "Cd_normal", "Cd_tangential",
+             "Ca_normal", "Ca_tangential", "area")
+    return {name: np.array([getattr(t, name) for t in types])[index] for name in names}
+
+
+def contact_damping(contact, props):
+    """Seabed damping per unit length [N s/m^2] per element: cBot d, or 2 G_c sqrt(G_K d m)."""
+    if contact.damping is not None:
+        return contact.damping * props["diameter"]
+    return 2.0 * contact.damping_ratio * np.sqrt(contact.stiffness * props["diameter"] * props["mass"])
+
+
+class LineSystem:
+    """Residual and tangent of one line over a seabed, for statics and dynamics."""
+
+    def __init__(self, line, seabed, contact, environment, quadrature_points=None,
+                 extra_loads=(), assembly="kernel"):
+        self.line = line
+        self.assembly = assembly
+        self.seabed = seabed
+        self.environment = environment
+        self.fem = LineFEM(line, quadrature_points)
+        self.props = props = element_properties(line)
+        self.tension = Tension(props["EA"], props["damping"])
+        self.weight = Weight(props["mass"], props["area"], environment.water_density, environment.gravity)
+        self.contact = SeabedContact(seabed, contact.stiffness * props["diameter"],
+                                     contact_damping(contact, props))
+        self.loads = [self.tension, self.weight, self.contact, *extra_loads]
+
+    @property
+    def fixed_rows(self):
+        """Rows of the anchor and fairlead vertices in a state array."""
+        return [self.fem.anchor_dof, self.fem.fairlead_dof]
+
+    def state(self, X, V=None, A=None, t=0.0):
+        """Kinematics at quadrature points for state X (N, 3), velocity V and acceleration A."""
+        r, dr = self.fem.at_quadrature(X)
+        v = dv = a = None
+        if V is not None:
+            v, dv = self.fem.at_quadrature(V)
+        if A is not None:
+            a, _ = self.fem.at_quadrature(A)
+        return State(r, dr, v, dv, a, t)
+
+    def evaluate(self, state, jacobian=True, velocity_factor=0.0, acceleration_factor=0.0):
+        """Residual rows (N, 3) of the loads and, with ``jacobian``, the tangent blocks
+        (A, B, C, D) of dG/dX at quadrature points (see ``cablefem.forms``), where
+        dV/dX = velocity_factor and dA/dX = acceleration_factor (both 0 in statics)."""
+        force = flux = None
+        blocks = [None, None, None, None]
+        for load in self.loads:
+            terms = load.evaluate(state, jacobian)
+            force, flux = add(force, terms.force), add(flux, terms.flux)
+            if not jacobian:
+                continue
+            for i, (base, rate, accel, sign) in enumerate((
+                    (terms.force_r, terms.force_v, terms.force_a, -1.0),
+                    (terms.force_dr, terms.force_dv, None, -1.0),
+                    (None, None, None, 1.0),
+                    (terms.flux_dr, terms.flux_dv, None, 1.0))):
+                block = _combine(base, rate, velocity_factor, accel, acceleration_factor)
+                if block is not None:
+                    blocks[i] = add(blocks[i], sign * block)
+        if self.assembly == "forms":
+            residual = self._forms_vector(force, flux)
+        else:
+            residual = self.fem.assemble_vector(force, flux)
+        return residual, (tuple(blocks) if jacobian else None)
+
+    def matrix(self, blocks, free_only=True):
+        """Sparse tangent (CSR) from the blocks returned by ``evaluate``, free DOFs by default."""
+        if self.assembly == "forms":
+            zero = np.zeros((3, 3) + self.fem.s.shape)
+            A, B, C, D = (zero if b is None else b for b in blocks)
+            K = forms.tangent.assemble(self.fem.basis, A=A, B=B, C=C, D=D).tocsr()
+            if free_only:
+                free = self.fem.free_vector_dofs
+                K = K[free][:, free]
+            return K
+        return self.fem.assemble_matrix(self.fem.element_matrices(*blocks), free_only)
+
+    def _forms_vector(self, force, flux):
+        zero = np.zeros((3,) + self.fem.s.shape)
+        force = zero if force is None else force
+        flux = zero if flux is None else flux
+        return forms.load_vector.assemble(self.fem.basis, force=force, flux=flux).reshape(-1, 3)
+
+    def residual(self, X, V=None, A=None, t=0.0):
+        """Load residual rows (N, 3) [N] at state X (inertia not included)."""
+        return self.evaluate(self.state(X, V, A, t), jacobian=False)[0]
+
+    def tension_at(self, X, s, V=None):
+        """Axial tension [N] at unstretched arc lengths s (n,), from the element holding each s."""
+        dr = self.fem.derivative(X, s).T[:, :, None]
+        EA = self.props["EA"][self.fem._locate(s)[0]][:, None]
+        return axial_tension(dr, EA)[:, 0]
+
+    def gap_at(self, X, s):
+        """Seabed penetration depth d_G [m] at arc lengths s (n,) (> 0 above the seabed)."""
+        return self.seabed.gap_only(self.fem.evaluate(X, s))
+
+    def weight_vector(self):
+        """Assembled weight load rows (N, 3) of the line fully submerged [N] (a force scale)."""
+        r = np.zeros((3,) + self.fem.s.shape)
+        r[2] = -1.0
+        return self.fem.assemble_vector(force=self.weight.evaluate(State(r, r)).force)
+
+
+def _combine(base, rate, velocity_factor, accel, acceleration_factor):
+    block = base
+    if rate is not None and velocity_factor:
+        block = add(block, velocity_factor * rate)
+    if accel is not None and acceleration_factor:
+        block = add(block, acceleration_factor * accel)
+    return block
