@@ -8,7 +8,8 @@ length is
 with the flux N and the force f summed over the loads. The line's own
 anchor and fairlead rows are the reactions: the force the line exerts on a
 support is -G at that vertex. "Model only what a scene needs": statics gets
-tension, weight and seabed contact; dynamics adds the rest.
+tension, weight and seabed contact; dynamics adds friction (``friction``, a
+``scene.Friction``) and, through ``extra_loads``, drag and added mass.
 """
 
 import numpy as np
@@ -17,8 +18,9 @@ from . import forms
 from .fem import LineFEM
 from .loads import State, add
 from .loads.contact import SeabedContact
+from .loads.friction import friction_law
 from .loads.gravity import Weight
-from .loads.tension import Tension, axial_tension
+from .loads.tension import Tension, axial_tension, strain
 
 
 def element_properties(line):
@@ -41,7 +43,7 @@ class LineSystem:
     """Residual and tangent of one line over a seabed, for statics and dynamics."""
 
     def __init__(self, line, seabed, contact, environment, quadrature_points=None,
-                 extra_loads=(), assembly="kernel"):
+                 extra_loads=(), assembly="kernel", friction=None):
         self.line = line
         self.assembly = assembly
         self.seabed = seabed
@@ -51,7 +53,8 @@ class LineSystem:
         self.tension = Tension(props["EA"], props["damping"])
         self.weight = Weight(props["mass"], props["area"], environment.water_density, environment.gravity)
         self.contact = SeabedContact(seabed, contact.stiffness * props["diameter"],
-                                     contact_damping(contact, props))
+                                     contact_damping(contact, props),
+                                     friction=None if friction is None else friction_law(friction))
         self.loads = [self.tension, self.weight, self.contact, *extra_loads]
 
     @property
@@ -121,6 +124,10 @@ class LineSystem:
         dr = self.fem.derivative(X, s).T[:, :, None]
         EA = self.props["EA"][self.fem._locate(s)[0]][:, None]
         return axial_tension(dr, EA)[:, 0]
+
+    def tension_strain(self, X):
+        """Strain |r'| - 1 at every quadrature point (nel, nq) of state X."""
+        return strain(self.fem.at_quadrature(X)[1])[0]
 
     def gap_at(self, X, s):
         """Seabed penetration depth d_G [m] at arc lengths s (n,) (> 0 above the seabed)."""

@@ -53,6 +53,11 @@ def outer(a, b):
     return a[:, None] * b[None, :]
 
 
+def compose(a, b):
+    """Pointwise matrix product of (3, 3, ...) blocks."""
+    return np.einsum("ab...,bc...->ac...", a, b)
+
+
 def identity_like(x):
     """The 3x3 identity broadcast to the trailing shape of x (3, ...)."""
     eye = np.eye(3).reshape((3, 3) + (1,) * (x.ndim - 1))

@@ -9,7 +9,8 @@ T (I - t (x) t) / |r'|. A slack element has no stiffness at all, which
 would make the Newton matrix singular (a line in a vertical plane has no
 out-of-plane stiffness without tension): its tangent gets a tiny isotropic
 stiffness ``SLACK_STIFFNESS`` EA instead, which changes the Newton path, not
-the equilibrium.
+the equilibrium. ``compression=True`` lets the line push (T = EA e for all
+e); statics starts with it, see ``cablefem.statics``.
 """
 
 import numpy as np
@@ -38,8 +39,9 @@ def axial_tension(dr, EA, beta=None, dv=None):
 class Tension:
     """Axial stiffness EA [N] and damping beta [s] per element, arrays of shape (nel,)."""
 
-    def __init__(self, EA, beta=None):
+    def __init__(self, EA, beta=None, compression=False):
         self.EA = np.asarray(EA, dtype=float)[:, None]
+        self.compression = compression  # True: T = EA e also for e < 0 (a statics start-up aid)
         beta = None if beta is None else np.asarray(beta, dtype=float)[:, None]
         self.beta = beta if beta is not None and np.any(beta > 0) else None
 
@@ -50,7 +52,7 @@ class Tension:
         damped = self.beta is not None and dv is not None
         rate = np.einsum("ceq,ceq->eq", t, dv) if damped else 0.0  # de/dt
         T = self.EA * (e + (self.beta * rate if damped else 0.0))
-        active = (e > 0.0) & (T > 0.0)
+        active = np.full(e.shape, True) if self.compression else (e > 0.0) & (T > 0.0)
         T = np.where(active, T, 0.0)
         terms = Terms(flux=T * t)
         if not jacobian:

@@ -1,0 +1,288 @@
+"""TOML scene reader: the schema of DESIGN.md "The TOML scene", documented key by key in docs/scene.md.
+
+Every value is type- and range-checked here, so a bad scene fails with one
+line naming the key path (``lines[0].segments[1].length``) and the reason;
+defaults come from the dataclasses of ``cablefem.scene``. A ``[moordyn]``
+table takes lines, points, line types and options from a MoorDyn v2 file;
+keys written in the TOML then override, one key at a time, what the MoorDyn
+file gave (``read_toml_scene`` states the rule).
+"""
+
+import math
+import os
+import re
+from dataclasses import replace
+
+try:
+    import tomllib
+except ModuleNotFoundError:  # Python 3.10
+    import tomli as tomllib
+
+import numpy as np
+
+from ..errors import InputError
+from ..geometry import Horizontal, Plane
+from ..line import Line, LineType, Segment
+from ..scene import INTEGRATORS, Contact, Environment, Friction, Motion, Output, Scene, Solver
+from . import validate as v
+from .moordyn_input import NO_MOTION_NOTE, read_moordyn
+
+TOP_LEVEL_KEYS = ("name", "environment", "line_types", "lines", "seabed", "friction",
+                  "motion", "solver", "output", "moordyn")
+SEABED_KINDS = ("horizontal", "plane", "grid", "mesh", "points")
+SEABED_SHAPE_KEYS = {"horizontal": ("depth",),
+                     "plane": ("point", "normal", "slope_deg", "azimuth_deg"),
+                     "grid": ("file",), "mesh": ("file",), "points": ("file",)}
+FRICTION_MODELS = ("none", "isotropic", "anisotropic")
+MOTION_KINDS = ("fixed", "harmonic", "circular", "table")
+MOTION_KEYS = {"fixed": (), "harmonic": ("amplitude", "period", "offset", "ramp"),
+               "circular": ("radius", "period", "plane", "offset", "ramp"), "table": ("file", "ramp")}
+MOTION_REQUIRED = {"fixed": (), "harmonic": ("amplitude", "period"),
+                   "circular": ("radius", "period"), "table": ("file",)}
+MOTION_PLANES = ("xy", "xz", "yz", "yx", "zx", "zy")  # sin along the first axis, cos along the second
+ASSEMBLY_PATHS = ("kernel", "forms")
+
+ENVIRONMENT_KEYS = {"water_density": v.positive, "gravity": v.positive, "current": v.vector3}
+LINE_TYPE_KEYS = {"diameter": v.positive, "mass": v.positive, "EA": v.positive,
+                  "damping": v.non_negative, "Cd_normal": v.non_negative,
+                  "Cd_tangential": v.non_negative, "Ca_normal": v.non_negative,
+                  "Ca_tangential": v.non_negative}
+LINE_KEYS = {"name": v.text, "anchor": v.vector3, "fairlead": v.vector3, "segments": v.tables,
+             "order": v.whole}
+SEGMENT_KEYS = {"type": v.text, "length": v.positive, "elements": v.whole}
+CONTACT_KEYS = {"stiffness": v.positive, "damping_ratio": v.non_negative, "damping": v.non_negative}
+FRICTION_KEYS = {"model": v.choice(FRICTION_MODELS), "mu": v.non_negative,
+                 "mu_axial": v.non_negative, "mu_transverse": v.non_negative,
+                 "static_scale": v.positive, "v_threshold": v.positive,
+                 "saturation_damping": v.positive}
+SOLVER_KEYS = {"integrator": v.choice(INTEGRATORS), "dt": v.positive, "duration": v.positive,
+               "tolerance": v.positive, "max_iterations": v.whole, "assembly": v.choice(ASSEMBLY_PATHS)}
+OUTPUT_KEYS = {"dir": v.text, "every": v.positive}
+MOORDYN_KEYS = {"file": v.text, "order": v.whole, "elements": v.whole}
+
+
+def parse_toml(path):
+    """The TOML document at ``path`` as a dict; InputError (key None) if it is not valid TOML."""
+    try:
+        with open(path, "rb") as handle:
+            return tomllib.load(handle)
+    except tomllib.TOMLDecodeError as error:
+        raise InputError(f"not valid TOML: {v.one_line(error)}") from None
+    except UnicodeDecodeError:
+        raise InputError("not valid TOML: not UTF-8 text") from None
+
+
+def read_toml_scene(path, data=None):
+    """The Scene of a TOML file (``data``: its parsed content, if already read).
+
+    Precedence with ``[moordyn] file``: a key written in the TOML wins; a key
+    the TOML leaves out takes the MoorDyn file's value; a key neither gives
+    takes the default of ``cablefem.scene``. ``[line_types]`` and ``[[lines]]``
+    may not be combined with ``[moordyn]`` (the lines come from the file).
+    """
+    path = os.path.abspath(path)
+    folder = os.path.dirname(path)
+    data = parse_toml(path) if data is None else data
+    v.check_keys(data, TOP_LEVEL_KEYS, "")
+    name = v.text(data["name"], "name") if "name" in data else os.path.splitext(os.path.basename(path))[0]
+    notes = []
+    if "moordyn" in data:
+        base = _moordyn_base(data, folder)
+        lines = base.lines
+        kept = [n for n in base.notes if not n.startswith("seabed:") and
+                not (n == NO_MOTION_NOTE and "motion" in data)]
+        notes += kept + [f"lines, line types and options from {base.source}; TOML keys override"]
+    else:
+        base = None
+        v.check_keys(data, TOP_LEVEL_KEYS, "", required=("line_types", "lines", "seabed"))
+        lines = _lines(data["lines"], _line_types(data["line_types"]))
+    environment = replace(base.environment if base else Environment(),
+                          **_section(data, "environment", ENVIRONMENT_KEYS))
+    seabed, contact = _seabed(data.get("seabed", {}), folder, base)
+    friction = replace(base.friction if base else Friction(),
+                       **_section(data, "friction", FRICTION_KEYS))
+    motion = _motion(data["motion"], folder) if "motion" in data else Motion()
+    solver = replace(base.solver if base else Solver(), **_section(data, "solver", SOLVER_KEYS))
+    output = replace(Output(), **_section(data, "output", OUTPUT_KEYS))
+    notes.append(f"seabed: {seabed.describe()}")
+    return Scene(name=name, lines=lines, seabed=seabed, contact=contact, environment=environment,
+                 friction=friction, motion=motion, solver=solver, output=output, source=path,
+                 notes=notes, moordyn_options=dict(base.moordyn_options) if base else {})
+
+
+def _section(data, name, converters):
+    """Checked values of the optional table ``name``: dict key -> value ({} if absent)."""
+    if name not in data:
+        return {}
+    return v.pick(v.table(data[name], name), name, converters)
+
+
+def _moordyn_base(data, folder):
+    """The Scene of the MoorDyn file named in [moordyn], with its element order/count applied."""
+    for key in ("lines", "line_types"):
+        if key in data:
+            raise InputError("cannot be combined with [moordyn]: the lines come from the MoorDyn file",
+                             key=key)
+    values = v.pick(v.table(data["moordyn"], "moordyn"), "moordyn", MOORDYN_KEYS, required=("file",))
+    file = v.existing_file(values["file"], "moordyn.file", folder)
+    base = read_moordyn(file)
+    lines = base.lines
+    if "elements" in values:
+        lines = [line.with_elements(values["elements"]) for line in lines]
+    if "order" in values:
+        lines = [line.with_order(values["order"]) for line in lines]
+    return replace(base, lines=lines)
+
+
+def _line_types(raw):
+    """Line types by name from the [line_types] table of tables."""
+    types = {}
+    for name, entry in v.table(raw, "line_types").items():
+        prefix = f"line_types.{name}"
+        values = v.pick(v.table(entry, prefix), prefix, LINE_TYPE_KEYS, required=("diameter", "mass", "EA"))
+        try:
+            types[name] = LineType(name, **values)
+        except InputError as error:
+            raise error.within(prefix=prefix) from None
+    if not types:
+        raise InputError("must define at least one line type", key="line_types")
+    return types
+
+
+def _lines(raw, types):
+    """The [[lines]] array as Line objects, anchor first, with the chord-strain check."""
+    lines, names = [], set()
+    for i, entry in enumerate(v.tables(raw, "lines")):
+        prefix = f"lines[{i}]"
+        values = v.pick(entry, prefix, LINE_KEYS, required=("anchor", "fairlead", "segments"))
+        name = values.get("name", f"line{i + 1}")
+        if name in names:
+            raise InputError(f"duplicate line name '{name}'", key=f"{prefix}.name")
+        names.add(name)
+        segments = []
+        for j, seg in enumerate(values["segments"]):
+            seg_prefix = f"{prefix}.segments[{j}]"
+            seg_values = v.pick(seg, seg_prefix, SEGMENT_KEYS, required=("type", "length", "elements"))
+            kind = seg_values["type"]
+            if kind not in types:
+                raise InputError(f"unknown line type '{kind}'{v.suggest(kind, types)}; "
+                                 f"defined in [line_types]: {', '.join(types)}", key=f"{seg_prefix}.type")
+            segments.append(Segment(types[kind], seg_values["length"], seg_values["elements"]))
+        try:
+            line = Line(name, values["anchor"], values["fairlead"], segments, values.get("order", 1))
+        except InputError as error:
+            raise error.within(prefix=prefix) from None
+        lines.append(v.check_chord(line, prefix))
+    return lines
+
+
+def _seabed(raw, folder, base):
+    """(seabed, Contact) from [seabed]; without ``kind`` the MoorDyn base's seabed is kept."""
+    raw = v.table(raw, "seabed")
+    if "kind" not in raw and base is None:
+        raise InputError("missing required key", key="seabed.kind")
+    kind = v.choice(SEABED_KINDS)(raw["kind"], "seabed.kind") if "kind" in raw else None
+    shape_keys = SEABED_SHAPE_KEYS.get(kind, ())
+    elsewhere = {}
+    for keys in SEABED_SHAPE_KEYS.values():
+        for key in keys:
+            elsewhere.setdefault(key, f"does not apply to seabed kind '{kind}'" if kind else
+                                 "needs seabed.kind (without it the MoorDyn file's seabed is used)")
+    converters = dict(CONTACT_KEYS, kind=v.text)
+    converters.update({key: _SHAPE_CONVERTERS[key] for key in shape_keys})
+    values = v.pick(raw, "seabed", converters, elsewhere=elsewhere)
+    contact = replace(base.contact if base else Contact(),
+                      **{key: values[key] for key in CONTACT_KEYS if key in values})
+    if "damping_ratio" in values and "damping" not in values:
+        contact = replace(contact, damping=None)  # the ratio the user wrote wins over MoorDyn's cBot
+    if kind is None:
+        return base.seabed, contact
+    try:
+        if kind == "horizontal":
+            v.check_keys(values, converters, "seabed", required=("depth",))
+            seabed = Horizontal(values["depth"])
+        elif kind == "plane":
+            seabed = _plane(values)
+        else:
+            v.check_keys(values, converters, "seabed", required=("file",))
+            file = v.existing_file(values["file"], "seabed.file", folder)
+            seabed = v.read_seabed_file(file, kind, "seabed.file", kind_key="seabed.kind")
+    except InputError as error:
+        raise (error if error.file or (error.key or "").startswith("seabed") else
+               error.within(prefix="seabed")) from None
+    return seabed, contact
+
+
+def _plane(values):
+    """A Plane from point + normal, or point + slope_deg (+ azimuth_deg)."""
+    v.check_keys(values, values, "seabed", required=("point",))
+    if ("normal" in values) == ("slope_deg" in values):
+        raise InputError("give either normal or slope_deg (with optional azimuth_deg)", key="seabed.normal")
+    if "normal" in values:
+        if "azimuth_deg" in values:
+            raise InputError("only applies with slope_deg, not with normal", key="seabed.azimuth_deg")
+        return Plane(values["point"], values["normal"])
+    slope = values["slope_deg"]
+    if not 0.0 <= slope < 90.0:
+        raise InputError(f"must be in [0, 90) degrees, got {slope:g}", key="seabed.slope_deg")
+    return Plane.from_slope(values["point"], math.radians(slope), math.radians(values.get("azimuth_deg", 0.0)))
+
+
+_SHAPE_CONVERTERS = {"depth": v.positive, "point": v.vector3, "normal": v.vector3,
+                     "slope_deg": v.number, "azimuth_deg": v.number, "file": v.text}
+
+
+def _motion(raw, folder):
+    """The Motion of the [motion] table (kind-specific keys; tables read and checked)."""
+    raw = v.table(raw, "motion")
+    v.check_keys(raw, raw, "motion", required=("kind",))
+    kind = v.choice(MOTION_KINDS)(raw["kind"], "motion.kind")
+    elsewhere = {key: f"does not apply to motion kind '{kind}'"
+                 for keys in MOTION_KEYS.values() for key in keys}
+    converters = {"kind": v.text, "amplitude": v.vector3, "period": v.positive, "offset": v.vector3,
+                  "ramp": v.non_negative, "radius": v.positive, "plane": v.choice(MOTION_PLANES),
+                  "file": v.text}
+    converters = {key: converters[key] for key in ("kind",) + MOTION_KEYS[kind]}
+    values = v.pick(raw, "motion", converters, required=MOTION_REQUIRED[kind], elsewhere=elsewhere)
+    if kind == "table":
+        file = v.existing_file(values.pop("file"), "motion.file", folder)
+        values["times"], values["positions"] = read_motion_table(file, "motion.file")
+    return Motion(**values)
+
+
+def read_motion_table(path, key):
+    """Times (k,) [s] and fairlead displacements (k, 3) [m] from a CSV with columns t, x, y, z.
+
+    A header row ``t,x,y,z`` is optional; separators may be commas, semicolons
+    or blanks; ``#`` starts a comment line. Times must strictly increase.
+    """
+    name = os.path.basename(path)
+    try:
+        with open(path, encoding="utf-8") as handle:
+            rows = handle.read().splitlines()
+    except (OSError, UnicodeDecodeError) as error:
+        raise InputError(f"cannot read {path}: {v.one_line(error)}", key=key) from None
+    table = []
+    for number, row in enumerate(rows, start=1):
+        fields = [f for f in re.split(r"[,;\s]+", row.strip()) if f]
+        if not fields or fields[0].startswith("#"):
+            continue
+        if not table and [f.lower() for f in fields] == ["t", "x", "y", "z"]:
+            continue
+        if len(fields) != 4:
+            raise InputError(f"{name} line {number}: expected 4 columns t, x, y, z, got {len(fields)}", key=key)
+        try:
+            values = [float(f) for f in fields]
+        except ValueError:
+            raise InputError(f"{name} line {number}: expected numbers t, x, y, z, got '{row.strip()}'",
+                             key=key) from None
+        if not all(math.isfinite(x) for x in values):
+            raise InputError(f"{name} line {number}: values must be finite, got '{row.strip()}'", key=key)
+        if table and values[0] <= table[-1][1][0]:
+            raise InputError(f"{name} line {number}: times must strictly increase "
+                             f"(t = {values[0]:g} after t = {table[-1][1][0]:g})", key=key)
+        table.append((number, values))
+    if len(table) < 2:
+        raise InputError(f"{name}: needs at least 2 rows t, x, y, z, got {len(table)}", key=key)
+    data = np.array([values for _, values in table])
+    return data[:, 0], data[:, 1:]

@@ -1,0 +1,53 @@
+"""Added mass per unit unstretched length (desire2023 Eq. 3, f_mn, with a tangential
+coefficient as MoorDyn's CaAx; times the stretch |r'| = 1 + e of Eq. 1).
+
+    f = -|r'| rho A (Ca_n (I - t t^T) + Ca_t t t^T) a,   A = pi d^2 / 4,
+
+with t = r'/|r'| and a the line's acceleration. Still water and a uniform
+current have no fluid acceleration, so there is no Froude-Krylov term. The
+load enters the residual like a mass matrix that depends on r'; its exact
+derivatives are force_a (that matrix) and force_dr (through t and |r'|).
+Without an acceleration in the state (statics, or an integrator that keeps
+added mass elsewhere) the load contributes nothing.
+"""
+
+import numpy as np
+
+from . import Terms, identity_like, outer
+
+
+class AddedMass:
+    """Added mass: diameter d [m], Ca_normal, Ca_tangential [-] per element (nel,),
+    water density rho [kg/m^3]."""
+
+    def __init__(self, diameter, Ca_normal, Ca_tangential, water_density):
+        rho_area = water_density * np.pi * np.asarray(diameter, dtype=float) ** 2 / 4.0
+        self.normal = (rho_area * np.asarray(Ca_normal, dtype=float))[:, None]  # [kg/m]
+        self.tangential = (rho_area * np.asarray(Ca_tangential, dtype=float))[:, None]
+
+    def matrix(self, dr):
+        """Added mass per unit unstretched length |r'| rho A (Ca_n P + Ca_t T) [kg/m] (3, 3, nel, nq)."""
+        stretch = np.sqrt(np.einsum("ceq,ceq->eq", dr, dr))
+        t = dr / stretch
+        return stretch * (self.normal * identity_like(t) + (self.tangential - self.normal) * outer(t, t))
+
+    def evaluate(self, state, jacobian=True):
+        if state.a is None:
+            return Terms()
+        dr, a = state.dr, state.a
+        stretch = np.sqrt(np.einsum("ceq,ceq->eq", dr, dr))
+        t = dr / stretch
+        along = np.einsum("ceq,ceq->eq", a, t)
+        difference = self.tangential - self.normal
+        per_stretched = self.normal * a + difference * along * t  # (Ca_n P + Ca_t T) rho A a
+        terms = Terms(force=-stretch * per_stretched)
+        if not jacobian:
+            return terms
+        eye = identity_like(t)
+        tangential_projector = outer(t, t)
+        terms.force_a = -stretch * (self.normal * eye + difference * tangential_projector)
+        # d((a . t) t)/dt = (a . t) I + t a^T; dt/dr' = (I - t t^T)/|r'|; d|r'|/dr' = t^T
+        dk_dt = difference * (along * eye + outer(t, a))
+        terms.force_dr = -(outer(per_stretched, t)
+                           + np.einsum("ab...,bc...->ac...", dk_dt, eye - tangential_projector))
+        return terms

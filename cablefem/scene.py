@@ -1,0 +1,195 @@
+"""A scene: lines + seabed + water + motion + solver settings (DESIGN.md, "The TOML scene").
+
+Scenes are loaded from TOML (``cablefem.io.toml_scene``) or from a MoorDyn v2
+input file (``cablefem.io.moordyn_input``); ``load_scene`` picks by content.
+Defaults of every optional key live here, in one place.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Environment:
+    """Water and gravity: density [kg/m^3], gravity [m/s^2], uniform current [m/s] (3,)."""
+
+    water_density: float = 1025.0
+    gravity: float = 9.81
+    current: tuple = (0.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Seabed normal contact (desire2023 Eq. 11): ground stiffness per unit area [N/m^3]
+    and damping, either as a fraction of critical (``damping_ratio``) or, as MoorDyn's
+    cBot, as an absolute coefficient per unit area [N s/m^3] (``damping``, overrides)."""
+
+    stiffness: float = 3.0e5
+    damping_ratio: float = 1.0
+    damping: float | None = None
+
+
+@dataclass(frozen=True)
+class Friction:
+    """Seabed friction: model "none" | "isotropic" (desire2023 Eq. 12) |
+    "anisotropic" (housner2022 Eq. 5-13); kinetic coefficients, static/kinetic
+    scale, and the saturation velocity [m/s]."""
+
+    model: str = "none"
+    mu: float = 0.3
+    mu_axial: float = 0.69
+    mu_transverse: float = 1.0
+    static_scale: float = 1.0
+    v_threshold: float = 0.01
+    saturation_damping: float | None = None  # MoorDyn-C FricDamp [N s/m per node], if read from MoorDyn
+
+
+@dataclass(frozen=True)
+class Motion:
+    """Prescribed fairlead motion relative to the scene's fairlead position.
+
+    kind: "fixed" | "harmonic" | "circular" | "table". Harmonic: amplitude (3,) [m],
+    period [s], offset (3,) [m]. Circular: radius [m], period [s], plane ("xy", "xz",
+    "yz"). Table: times (k,) [s] and positions (k, 3) [m]. ``ramp`` [s] scales the whole
+    displacement by the smoothstep 3u^2 - 2u^3, u = t / ramp.
+    """
+
+    kind: str = "fixed"
+    amplitude: tuple = (0.0, 0.0, 0.0)
+    period: float = 1.0
+    offset: tuple = (0.0, 0.0, 0.0)
+    ramp: float = 0.0
+    radius: float = 0.0
+    plane: str = "xz"
+    times: np.ndarray | None = None
+    positions: np.ndarray | None = None
+
+
+#: integrators a scene may name in [solver] integrator (cablefem.dynamics implements them)
+INTEGRATORS = ("bdf2", "generalized-alpha")
+
+
+@dataclass(frozen=True)
+class Solver:
+    """Solver settings: integrator ("bdf2" | "generalized-alpha"), time step [s], duration [s],
+    relative residual tolerance, Newton iteration cap, the assembly path ("kernel" or
+    "forms"), and the spectral radius at infinite frequency of generalised-alpha."""
+
+    integrator: str = "bdf2"
+    dt: float = 0.01
+    duration: float = 120.0
+    tolerance: float = 1e-8
+    max_iterations: int = 50
+    assembly: str = "kernel"
+    rho_inf: float = 0.8
+
+
+@dataclass(frozen=True)
+class Output:
+    """Where and how often a run writes: directory and seconds between VTK frames."""
+
+    dir: str = "out"
+    every: float = 0.1
+
+
+@dataclass
+class Scene:
+    """Everything a solve needs. ``notes`` records what was chosen (seabed model, ...)."""
+
+    name: str
+    lines: list
+    seabed: object
+    contact: Contact = field(default_factory=Contact)
+    environment: Environment = field(default_factory=Environment)
+    friction: Friction = field(default_factory=Friction)
+    motion: Motion = field(default_factory=Motion)
+    solver: Solver = field(default_factory=Solver)
+    output: Output = field(default_factory=Output)
+    source: str | None = None
+    notes: list = field(default_factory=list)
+    moordyn_options: dict = field(default_factory=dict)  # raw OPTIONS of a MoorDyn file (name -> text)
+
+
+#: file extensions read as MoorDyn input files; anything else is tried as TOML first
+MOORDYN_EXTENSIONS = (".dat", ".txt", ".inp", ".in", ".moordyn")
+
+
+def load_scene(path):
+    """The Scene of a TOML scene or MoorDyn v2 input file at ``path`` (str or path-like).
+
+    ``.toml`` is TOML and ``.dat``/``.txt``/``.inp``/``.in`` MoorDyn; any
+    other file is TOML when it parses as TOML with a scene's tables, MoorDyn
+    otherwise. Every error is an InputError naming the file, the key path and
+    the reason on one line.
+    """
+    import os
+
+    from .errors import InputError
+    from .io.moordyn_input import read_moordyn
+    from .io.toml_scene import TOP_LEVEL_KEYS, parse_toml, read_toml_scene
+
+    path = os.fspath(path)
+    try:
+        if not os.path.exists(path):
+            raise InputError("file not found")
+        if not os.path.isfile(path):
+            raise InputError("not a file")
+        if not os.access(path, os.R_OK):
+            raise InputError("file not readable")
+        extension = os.path.splitext(path)[1].lower()
+        if extension == ".toml":
+            return read_toml_scene(path)
+        if extension in MOORDYN_EXTENSIONS:
+            return read_moordyn(path)
+        try:
+            data = parse_toml(path)
+        except InputError:
+            data = None
+        if data and any(key in data for key in TOP_LEVEL_KEYS):
+            return read_toml_scene(path, data)
+        return read_moordyn(path)
+    except InputError as error:
+        located = error.within(file=path)
+        raise InputError(" ".join(located.reason.split()), key=located.key, file=located.file) from None
+    except OSError as error:
+        raise InputError(f"cannot read: {error.strerror or error}", file=path) from None
+
+
+def default_scene():
+    """The built-in scene of ``cablefem static`` / ``run`` with no SCENE (examples/flume_flat.toml).
+
+    The Table 5 chain of desire2023 (L = 635 m, 835.4 kg/m, d = 0.3539 m,
+    EA = 3.15e9 N, beta = 0.001 s, Cd_n 2.5, Cd_t 0.5, Ca_n 3.8, ground 3e5 N/m^3,
+    isotropic friction mu 0.3, v_c 0.01 m/s) over a horizontal seabed 150 m deep:
+    the flume ran 1.8-2.5 m deep at 1:75 (135-187.5 m), and 150 m is 2.0 m at
+    model scale, inside that range. Anchor at x = -560 m, fairlead at the origin
+    (desire2023 frame): 412 m of chain rests on the seabed and the fairlead
+    tension is about 1.7 MN (inextensible catenary), and the line still touches
+    down at the largest flume excursion (15 m drift + 2.5 m). Motion: the
+    flume's high-frequency case (5 m surge amplitude, 6 s period, no drift),
+    ramped in over one period so the run starts without a velocity jump; 60 s
+    (10 periods) with BDF2 at dt = 0.01 s; 40 P1 elements.
+    """
+    from .geometry import Horizontal
+    from .line import Line, LineType, Segment
+
+    chain = LineType("chain", diameter=0.3539, mass=835.4, EA=3.15e9, damping=0.001,
+                     Cd_normal=2.5, Cd_tangential=0.5, Ca_normal=3.8, Ca_tangential=0.0)
+    line = Line("line1", anchor=(-560.0, 0.0, -150.0), fairlead=(0.0, 0.0, 0.0),
+                segments=(Segment(chain, 635.0, 40),), order=1)
+    seabed = Horizontal(150.0)
+    return Scene(
+        name="flume-flat",
+        lines=[line],
+        seabed=seabed,
+        contact=Contact(stiffness=3.0e5, damping_ratio=1.0),
+        environment=Environment(water_density=1025.0, gravity=9.81),
+        friction=Friction(model="isotropic", mu=0.3, v_threshold=0.01),
+        motion=Motion(kind="harmonic", amplitude=(5.0, 0.0, 0.0), period=6.0, ramp=6.0),
+        solver=Solver(integrator="bdf2", dt=0.01, duration=60.0),
+        output=Output(dir="out", every=0.1),
+        source=None,
+        notes=["built-in default scene (desire2023 Table 5 line, flume flat case)",
+               f"seabed: {seabed.describe()}"],
+    )
