@@ -1,0 +1,152 @@
+"""The ``cablefem`` command (DESIGN.md, "Interfaces that users rely on").
+
+User errors (bad scene, unreadable file) print one line naming the file, the
+key and the reason and exit with status 2; a solver that does not converge
+prints its residual and exits with status 3. Output files are written whole
+or not at all.
+"""
+
+import argparse
+import json
+import os
+import sys
+import tempfile
+import time
+
+from .errors import ConvergenceError, InputError
+
+
+def _load(path):
+    from .scene import default_scene, load_scene
+
+    return default_scene() if path is None else load_scene(path)
+
+
+def write_json(path, data):
+    """Write ``data`` as JSON to ``path`` atomically (a temporary file renamed into place)."""
+    folder = os.path.dirname(os.path.abspath(path))
+    os.makedirs(folder, exist_ok=True)
+    handle, tmp = tempfile.mkstemp(dir=folder, prefix=".cablefem-", suffix=".json")
+    try:
+        with os.fdopen(handle, "w") as out:
+            json.dump(data, out, indent=1)
+        os.replace(tmp, path)
+    except BaseException:
+        os.unlink(tmp)
+        raise
+
+
+def solve_scene_static(scene):
+    """Static equilibrium of every line of a scene: (list of LineReport, Newton iterations, results)."""
+    from .results import report
+    from .statics import solve_static
+    from .system import LineSystem
+
+    reports, results, iterations = [], [], 0
+    for line in scene.lines:
+        system = LineSystem(line, scene.seabed, scene.contact, scene.environment,
+                            assembly=scene.solver.assembly)
+        result = solve_static(system, tolerance=scene.solver.tolerance,
+                              max_iterations=scene.solver.max_iterations)
+        iterations += result.iterations
+        results.append(result)
+        reports.append(report(system, result.X))
+    return reports, iterations, results
+
+
+def cmd_static(args):
+    """``cablefem static [SCENE] [--json FILE]``."""
+    start = time.perf_counter()
+    scene = _load(args.scene)
+    reports, iterations, results = solve_scene_static(scene)
+    wall = time.perf_counter() - start
+    print(f"scene {scene.name}: seabed {scene.seabed.describe()}")
+    for note in scene.notes:
+        print(f"  note: {note}")
+    print(f"{'line':<12} {'fairlead T [N]':>15} {'anchor T [N]':>15} {'touchdown s [m]':>16} "
+          f"{'iters':>6} {'residual':>9}")
+    for rep, res in zip(reports, results):
+        td = "-" if rep.touchdown_s is None else f"{rep.touchdown_s:.3f}"
+        print(f"{rep.name:<12} {rep.fairlead_tension:15.6e} {rep.anchor_tension:15.6e} {td:>16} "
+              f"{res.iterations:6d} {res.residual:9.2e}")
+    print(f"{iterations} Newton iterations in {wall:.3f} s")
+    if args.json:
+        write_json(args.json, {
+            "lines": [rep.as_dict() for rep in reports],
+            "newton_iterations": iterations,
+            "wall_time_s": wall,
+            "scene": scene.name,
+            "seabed": scene.seabed.describe(),
+            "notes": list(scene.notes),
+            "residuals": [res.residual for res in results],
+        })
+
+
+def cmd_run(args):
+    """``cablefem run [SCENE] [--out DIR] [--duration T] [--dt DT]``."""
+    from .run import run_scene
+
+    scene = _load(args.scene)
+    for value, key in ((args.duration, "--duration"), (args.dt, "--dt")):
+        if value is not None and not (value > 0 and value < float("inf")):
+            raise InputError(f"must be a number > 0, got {value}", key=key)
+    out = args.out or scene.output.dir
+    print(f"scene {scene.name}: seabed {scene.seabed.describe()}; writing to {out}")
+    for note in scene.notes:
+        print(f"  note: {note}")
+    summary = run_scene(scene, out, duration=args.duration, dt=args.dt)
+    for name, extremes in summary["tension_extremes"].items():
+        print(f"{name}: fairlead tension {extremes['fairlead_tension_min']:.4e} .. "
+              f"{extremes['fairlead_tension_max']:.4e} N")
+    print(f"{summary['steps']} steps, {summary['newton_iterations']} Newton iterations, "
+          f"{summary['simulated_time_s']:.3f} s simulated in {summary['wall_time_s']:.2f} s")
+
+
+def cmd_plot(args):
+    """``cablefem plot OUT [--png FILE]``."""
+    from .post import plot_tensions
+
+    path = plot_tensions(args.out, args.png)
+    print(f"wrote {path}")
+
+
+def build_parser():
+    """The argument parser of the ``cablefem`` command."""
+    parser = argparse.ArgumentParser(prog="cablefem", description=__doc__.splitlines()[0])
+    commands = parser.add_subparsers(dest="command", required=True)
+    static = commands.add_parser("static", help="static equilibrium of a scene")
+    static.add_argument("scene", nargs="?", help="TOML scene or MoorDyn v2 input file (default: built-in scene)")
+    static.add_argument("--json", metavar="FILE", help="write the results as JSON")
+    static.set_defaults(func=cmd_static)
+    run = commands.add_parser("run", help="time-domain simulation of a scene")
+    run.add_argument("scene", nargs="?", help="TOML scene or MoorDyn v2 input file (default: built-in scene)")
+    run.add_argument("--out", metavar="DIR", help="output folder (default: the scene's [output] dir)")
+    run.add_argument("--duration", type=float, metavar="T", help="simulated time [s]")
+    run.add_argument("--dt", type=float, metavar="DT", help="time step [s]")
+    run.set_defaults(func=cmd_run)
+    plot = commands.add_parser("plot", help="fairlead and anchor tension against time of a run")
+    plot.add_argument("out", metavar="OUT", help="output folder of a run")
+    plot.add_argument("--png", metavar="FILE", help="image to write (default: OUT/tensions.png)")
+    plot.set_defaults(func=cmd_plot)
+    return parser
+
+
+def main(argv=None):
+    """Entry point: parse arguments, run the command, turn user errors into one line."""
+    args = build_parser().parse_args(argv)
+    try:
+        args.func(args)
+    except InputError as error:
+        print(f"cablefem: error: {error.message()}", file=sys.stderr)
+        return 2
+    except ConvergenceError as error:
+        print(f"cablefem: {error}", file=sys.stderr)
+        return 3
+    except KeyboardInterrupt:
+        print("cablefem: interrupted", file=sys.stderr)
+        return 130
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,104 @@
+"""What a solve reports for each line: end forces, tensions, node positions, touchdown.
+
+End forces are the reactions of the discrete system (the residual rows of the
+anchor and fairlead vertices), which for Galerkin FEM are more accurate than
+tensions differentiated from the positions.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass
+class LineReport:
+    """Per-line results [SI]: forces the line exerts on its ends (3,), their magnitudes,
+    vertex positions (n, 3) anchor first, and the touchdown arc length (None if no contact)."""
+
+    name: str
+    fairlead_force: np.ndarray
+    anchor_force: np.ndarray
+    nodes: np.ndarray
+    touchdown_s: float | None
+
+    @property
+    def fairlead_tension(self):
+        """Magnitude of the fairlead force [N]."""
+        return float(np.linalg.norm(self.fairlead_force))
+
+    @property
+    def anchor_tension(self):
+        """Magnitude of the anchor force [N]."""
+        return float(np.linalg.norm(self.anchor_force))
+
+    def as_dict(self):
+        """The JSON fields of DESIGN.md for one line."""
+        return {
+            "name": self.name,
+            "fairlead_force": self.fairlead_force.tolist(),
+            "anchor_force": self.anchor_force.tolist(),
+            "fairlead_tension": self.fairlead_tension,
+            "anchor_tension": self.anchor_tension,
+            "nodes": self.nodes.tolist(),
+            "touchdown_s": self.touchdown_s,
+        }
+
+
+def end_forces(system, X, inertia=None):
+    """Forces (3,) the line exerts on its fairlead and anchor [N] at state X (N, 3);
+    ``inertia`` (N, 3) adds the M a rows in dynamics."""
+    R = system.residual(X)
+    if inertia is not None:
+        R = R + inertia
+    return -R[system.fem.fairlead_dof], -R[system.fem.anchor_dof]
+
+
+def touchdown(system, X, samples_per_element=16):
+    """Arc length [m] of the touchdown point: the last point, counted from the anchor, where the
+    line penetrates the seabed (d_G <= 0), refined linearly between samples; None without contact."""
+    nodes = system.fem.mesh.p[0]
+    fractions = np.linspace(0.0, 1.0, samples_per_element + 1)[:-1]
+    s = np.append((nodes[:-1, None] + np.diff(nodes)[:, None] * fractions).ravel(), nodes[-1])
+    gap = system.gap_at(X, s)
+    touching = np.flatnonzero(gap <= 0.0)
+    if touching.size == 0:
+        return None
+    last = touching[-1]
+    if last == s.size - 1:
+        return float(s[-1])
+    g0, g1 = gap[last], gap[last + 1]
+    return float(s[last] + (s[last + 1] - s[last]) * g0 / (g0 - g1))
+
+
+def report(system, X):
+    """The ``LineReport`` of one line system at state X."""
+    fairlead, anchor = end_forces(system, X)
+    return LineReport(system.line.name, fairlead, anchor, X[: system.fem.n_vertices].copy(),
+                      touchdown(system, X))
+
+
+def sample_arc_lengths(system, per_element=None):
+    """Arc lengths [m] for drawing a line: each element split into ``order`` pieces (n,)."""
+    nodes = system.fem.mesh.p[0]
+    pieces = per_element or system.fem.order
+    fractions = np.linspace(0.0, 1.0, pieces + 1)[:-1]
+    return np.append((nodes[:-1, None] + np.diff(nodes)[:, None] * fractions).ravel(), nodes[-1])
+
+
+def line_fields(system, X, V=None, s=None):
+    """Point data of a line for a VTK frame: positions and, per point, tension [N], strain,
+    velocity [m/s], seabed gap d_G [m] and contact force per unit length [N/m]."""
+    s = sample_arc_lengths(system) if s is None else s
+    fem = system.fem
+    points = fem.evaluate(X, s)
+    dr = fem.derivative(X, s)
+    stretch = np.linalg.norm(dr, axis=1)
+    element = fem._locate(s)[0]
+    EA = system.props["EA"][element]
+    proj = system.seabed.project(points)
+    stiffness = system.contact.stiffness[element, 0]
+    contact = (stiffness * np.maximum(-proj.gap, 0.0))[:, None] * proj.direction
+    velocity = np.zeros_like(points) if V is None else fem.evaluate(V, s)
+    return {"points": points, "tension": EA * np.maximum(stretch - 1.0, 0.0),
+            "strain": stretch - 1.0, "velocity": velocity, "seabed_gap": proj.gap,
+            "contact_force": contact}
