@@ -8,3 +8,16 @@ from .base import Projection, Seabed
 from .planes import Horizontal, Plane
 
 __all__ = ["Horizontal", "Plane", "Projection", "Seabed"]
+
+from .triangulated import TriangulatedSurface  # noqa: E402  (issue 3: vertex-normal projection)
+
+__all__ += ["TriangulatedSurface"]
+
+from .grid import DepthGrid  # noqa: E402  (issue 3: rectangular grids, readers, generators)
+from .readers import read_seabed  # noqa: E402
+from .simplify import least_squares_plane, mean_depth_horizontal, simplify  # noqa: E402
+from .export import write_seabed_vtu  # noqa: E402
+from . import generators  # noqa: E402
+
+__all__ += ["DepthGrid", "generators", "least_squares_plane", "mean_depth_horizontal",
+            "read_seabed", "simplify", "write_seabed_vtu"]
