@@ -1,0 +1,257 @@
+"""Implicit time integrators with Newton per step: BDF2 and generalised-alpha.
+
+The semi-discrete equation of motion (desire2023 Eq. 1 after the FEM in s) is
+
+    M A + G(X, V, A, t) = 0,
+
+with M the consistent (or lumped) mass and G the loads (tension with
+internal damping, weight, drag, added mass, seabed contact and friction).
+The anchor row is fixed and the fairlead row follows its prescribed motion.
+Each integrator writes X_{n+1} as the unknown, V and A as affine functions
+of it, and solves the step's residual by Newton with the analytic tangent
+
+    K = a_x M + dG/dX + v_x dG/dV + a_x dG/dA,   v_x = dV/dX, a_x = dA/dX.
+
+Like scipy.integrate's solvers, an integrator has a ``step()`` and counters
+(``nfev`` residual evaluations, ``njev`` tangents, ``nlu`` factorisations,
+``newton_iterations``, ``steps``, ``rejected``). A step whose Newton does not
+converge is retried with half the step; the caller sees a
+``ConvergenceError`` only when the step falls below ``min_dt``.
+"""
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from .errors import ConvergenceError
+
+
+class Integrator:
+    """Common machinery: state, boundary rows, mass, Newton, retries, counters.
+
+    system: a ``LineSystem``; X0, V0: (N, 3) initial state [m, m/s]; ``boundary(t)`` gives
+    the fairlead's position, velocity and acceleration (3,) at time t; dt [s]; tolerance:
+    relative residual or relative increment, as in statics.
+    """
+
+    name = "integrator"
+
+    def __init__(self, system, X0, boundary, V0=None, t0=0.0, dt=0.01, tolerance=1e-8,
+                 max_iterations=12, lumped=False, min_dt=None):
+        self.system = system
+        fem = system.fem
+        self.fem = fem
+        self.boundary = boundary
+        self.t = float(t0)
+        self.X = np.array(X0, dtype=float)
+        self.V = np.zeros_like(self.X) if V0 is None else np.array(V0, dtype=float)
+        self.dt = float(dt)
+        self.nominal_dt = float(dt)
+        self.min_dt = float(min_dt) if min_dt else self.dt / 1024.0
+        self.tolerance = tolerance
+        self.max_iterations = max_iterations
+        self.M = fem.vector_mass(system.props["mass"], free_only=False)
+        if lumped:
+            if fem.order != 1:
+                raise ValueError("a lumped mass needs order 1 elements")
+            self.M = sp.diags(np.asarray(self.M.sum(axis=1)).ravel()).tocsr()
+        free = fem.free_vector_dofs
+        self.M_free = self.M[free][:, free].tocsr()
+        self.length = system.line.unstretched_length
+        self.scale = float(np.linalg.norm(system.weight_vector()[fem.free_dofs])) or 1.0
+        self.nfev = self.njev = self.nlu = 0
+        self.newton_iterations = self.steps = self.rejected = 0
+        self.residual_rows = None  # full residual M A + G at the current state, (N, 3)
+        self.A = self.initial_acceleration()
+
+    # ------------------------------------------------------------ helpers
+    def set_boundary(self, X, V, A, t):
+        """Put the anchor and fairlead rows of X, V, A at their prescribed values at time t."""
+        fem = self.fem
+        X[fem.anchor_dof] = self.system.line.anchor
+        V[fem.anchor_dof] = 0.0
+        A[fem.anchor_dof] = 0.0
+        X[fem.fairlead_dof], V[fem.fairlead_dof], A[fem.fairlead_dof] = self.boundary(t)
+
+    def inertia(self, A):
+        """Rows (N, 3) of M A."""
+        return (self.M @ A.ravel()).reshape(A.shape)
+
+    def initial_acceleration(self):
+        """A0 from (M + added mass) A0 = -G(X0, V0) on the free rows (zero at rest in equilibrium)."""
+        fem, system = self.fem, self.system
+        A = np.zeros_like(self.X)
+        X, V = self.X.copy(), self.V.copy()
+        self.set_boundary(X, V, A, self.t)
+        residual, blocks = system.evaluate(system.state(X, V, A, self.t), jacobian=True,
+                                           velocity_factor=0.0, acceleration_factor=1.0)
+        rhs = -(residual + self.inertia(A))[fem.free_dofs].ravel()
+        if np.linalg.norm(rhs) <= 1e-12 * self.scale:
+            return A
+        # d(G + M A)/dA restricted to the free rows: the acceleration blocks only
+        rate_only = system.evaluate(system.state(X, V, A, self.t), jacobian=True,
+                                    velocity_factor=0.0, acceleration_factor=1.0)[1]
+        static = system.evaluate(system.state(X, V, A, self.t), jacobian=True)[1]
+        K = system.matrix(rate_only) - system.matrix(static) + self.M_free
+        A[fem.free_dofs] = spla.spsolve(K.tocsc(), rhs).reshape(-1, 3)
+        return A
+
+    def newton(self, X1, point, factors, t_eval):
+        """Solve the step residual M A + G = 0 on the free rows for the new positions X1 (N, 3).
+
+        point(X1) -> (X, V, A) where the loads are evaluated; factors = (v_x, a_x, g_x) with
+        d(X, V, A)/dX1 = g_x (1, v_x, a_x). Returns (X1, rows, ok), rows = M A + G (N, 3).
+        """
+        fem, system = self.fem, self.system
+        free = fem.free_dofs
+        v_x, a_x, g_x = factors
+        rows = None
+        for iteration in range(1, self.max_iterations + 1):
+            X, V, A = point(X1)
+            residual, blocks = self.evaluate(X, V, A, t_eval, v_x, a_x)
+            rows = residual + self.inertia(A)
+            norm = np.linalg.norm(rows[free]) / self.scale
+            if not np.isfinite(norm):
+                return X1, rows, False
+            if norm <= self.tolerance and iteration > 1:
+                return X1, rows, True
+            K = g_x * (system.matrix(blocks) + a_x * self.M_free)
+            self.njev += 1
+            self.nlu += 1
+            try:
+                dX = spla.spsolve(K.tocsc(), -rows[free].ravel()).reshape(-1, 3)
+            except RuntimeError:
+                return X1, rows, False
+            if not np.all(np.isfinite(dX)):
+                return X1, rows, False
+            X1 = X1.copy()
+            X1[free] += dX
+            self.newton_iterations += 1
+            if np.max(np.abs(dX)) <= self.tolerance * self.length:
+                X, V, A = point(X1)
+                residual, _ = self.evaluate(X, V, A, t_eval, v_x, a_x, jacobian=False)
+                return X1, residual + self.inertia(A), True
+        return X1, rows, False
+
+    def evaluate(self, X, V, A, t, v_x, a_x, jacobian=True):
+        """Load residual rows and tangent blocks at the step's evaluation point."""
+        self.nfev += 1
+        return self.system.evaluate(self.system.state(X, V, A, t), jacobian, v_x, a_x)
+
+    # --------------------------------------------------------------- step
+    def step(self, dt=None):
+        """Advance by dt (default: the current step), halving it on failure; returns the dt taken."""
+        h = float(dt or self.dt)
+        while True:
+            if self.attempt(h):
+                self.steps += 1
+                return h
+            self.rejected += 1
+            h *= 0.5
+            if h < self.min_dt:
+                raise ConvergenceError(
+                    f"{self.name}: Newton did not converge at t = {self.t:.6g} s even with "
+                    f"dt = {2 * h:.3g} s; try a smaller dt, more elements or a softer seabed",
+                    iterations=self.newton_iterations)
+
+    def attempt(self, h):
+        """Try one step of size h; update the state and return True on success."""
+        raise NotImplementedError
+
+    def predict(self, h, t1):
+        """Taylor predictor of the positions at t1 = t + h with the boundary rows in place."""
+        guess = self.X + h * self.V + 0.5 * h * h * self.A
+        guess[self.fem.fairlead_dof] = self.boundary(t1)[0]
+        guess[self.fem.anchor_dof] = self.system.line.anchor
+        return guess
+
+    def reactions(self):
+        """Forces (3,) the line exerts on its fairlead and anchor at the current state [N]."""
+        rows = self.residual_rows
+        if rows is None:
+            residual, _ = self.evaluate(self.X, self.V, self.A, self.t, 0.0, 0.0, jacobian=False)
+            rows = residual + self.inertia(self.A)
+        return -rows[self.fem.fairlead_dof], -rows[self.fem.anchor_dof]
+
+    def statistics(self):
+        """Counters as a dict, for summary.json."""
+        return {"integrator": self.name, "steps": self.steps, "rejected": self.rejected,
+                "newton_iterations": self.newton_iterations, "nfev": self.nfev,
+                "njev": self.njev, "nlu": self.nlu}
+
+
+class BDF2(Integrator):
+    """Variable-step BDF2 on X and V (desire2023 Sec. 2.1.2), started by one backward-Euler step."""
+
+    name = "bdf2"
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.previous = None  # (h, X, V) of the step before
+
+    def coefficients(self, h):
+        """(c0, c1, c2) with y' ~ c0 y_{n+1} + c1 y_n + c2 y_{n-1}; backward Euler at the start."""
+        if self.previous is None:
+            return 1.0 / h, -1.0 / h, 0.0
+        w = h / self.previous[0]
+        return (1 + 2 * w) / ((1 + w) * h), -(1 + w) / h, w * w / ((1 + w) * h)
+
+    def attempt(self, h):
+        c0, c1, c2 = self.coefficients(h)
+        t1 = self.t + h
+        Xp, Vp = (self.X, self.V) if self.previous is None else self.previous[1:]
+        x_hist = c1 * self.X + c2 * Xp
+        v_hist = c1 * self.V + c2 * Vp
+
+        def point(X):
+            V = c0 * X + x_hist
+            return X, V, c0 * V + v_hist
+
+        X, rows, ok = self.newton(self.predict(h, t1), point, (c0, c0 * c0, 1.0), t1)
+        if not ok:
+            return False
+        self.previous = (h, self.X, self.V)
+        _, self.V, self.A = point(X)
+        self.X, self.t, self.residual_rows = X, t1, rows
+        return True
+
+
+class GeneralizedAlpha(Integrator):
+    """Generalised-alpha (Chung & Hulbert 1993) with spectral radius ``rho_inf`` at infinite
+    frequency: second order, unconditionally stable, tunable high-frequency damping."""
+
+    name = "generalized-alpha"
+
+    def __init__(self, *args, rho_inf=0.8, **kwargs):
+        self.rho_inf = float(rho_inf)
+        r = self.rho_inf
+        self.alpha_m = (2 * r - 1) / (r + 1)
+        self.alpha_f = r / (r + 1)
+        self.gamma = 0.5 - self.alpha_m + self.alpha_f
+        self.beta = 0.25 * (1 - self.alpha_m + self.alpha_f) ** 2
+        super().__init__(*args, **kwargs)
+
+    def attempt(self, h):
+        am, af, g, b = self.alpha_m, self.alpha_f, self.gamma, self.beta
+        t1 = self.t + h
+        X0, V0, A0 = self.X, self.V, self.A
+
+        def newmark(X1):
+            A1 = (X1 - X0 - h * V0) / (b * h * h) - (0.5 / b - 1.0) * A0
+            return V0 + h * ((1 - g) * A0 + g * A1), A1
+
+        def point(X1):  # loads at t_{n+1-af}, inertia at n+1-am
+            V1, A1 = newmark(X1)
+            return (1 - af) * X1 + af * X0, (1 - af) * V1 + af * V0, (1 - am) * A1 + am * A0
+
+        factors = (g / (b * h), (1 - am) / ((1 - af) * b * h * h), 1 - af)
+        X1, _, ok = self.newton(self.predict(h, t1), point, factors, t1 - af * h)
+        if not ok:
+            return False
+        self.V, self.A = newmark(X1)
+        self.X, self.t = X1, t1
+        self.residual_rows = None  # the balance holds at n+1-af; reactions re-evaluate at n+1
+        return True
+
+
+INTEGRATORS = {"bdf2": BDF2, "generalized-alpha": GeneralizedAlpha}

@@ -1,0 +1,185 @@
+"""Time-domain runs of a scene: static start, implicit steps, outputs written as the run goes.
+
+A run writes DIR/<name>.pvd with one .vtu per output frame, DIR/seabed.vtu,
+DIR/tensions.csv (one row per time step) and DIR/summary.json (DESIGN.md).
+Frames and rows are written while the run goes, so memory does not grow
+with the duration, and a run stopped by Ctrl-C or a solver failure still
+leaves a valid .pvd, the rows computed so far and a summary saying where it
+stopped.
+"""
+
+import csv
+import json
+import os
+import sys
+import time
+
+import numpy as np
+
+from .dynamics import INTEGRATORS
+from .io.vtk import TimeSeriesWriter, polyline_mesh, write_atomic
+from .line import Line
+from .motion import fairlead_motion
+from .results import line_fields
+from .statics import solve_static
+from .system import LineSystem
+
+
+def dynamic_loads(scene, props):
+    """The loads a time-domain run adds to tension, weight and contact: drag when there is a
+    drag coefficient or a current, added mass when there is an added-mass coefficient."""
+    from .loads.added_mass import AddedMass
+    from .loads.drag import Drag
+
+    loads = []
+    env = scene.environment
+    if np.any(props["Cd_normal"] > 0) or np.any(props["Cd_tangential"] > 0):
+        loads.append(Drag(props["diameter"], props["Cd_normal"], props["Cd_tangential"],
+                          env.water_density, env.current))
+    if np.any(props["Ca_normal"] > 0) or np.any(props["Ca_tangential"] > 0):
+        loads.append(AddedMass(props["diameter"], props["Ca_normal"], props["Ca_tangential"],
+                               env.water_density))
+    return loads
+
+
+def build_system(scene, line, dynamic=True):
+    """The ``LineSystem`` of one line of a scene; ``dynamic`` adds drag, added mass and friction."""
+    system = LineSystem(line, scene.seabed, scene.contact, scene.environment,
+                        assembly=scene.solver.assembly,
+                        friction=scene.friction if dynamic else None)
+    if dynamic:
+        system.loads.extend(dynamic_loads(scene, system.props))
+    return system
+
+
+def boundary_path(scene, line):
+    """The fairlead's prescribed path: t -> (position, velocity, acceleration), each (3,)."""
+    def boundary(t):
+        d, v, a = fairlead_motion(scene.motion, t)
+        return line.fairlead + d, v, a
+    return boundary
+
+
+def start_states(scene, t0=0.0):
+    """Static equilibrium of every line with its fairlead where the motion puts it at t0."""
+    states, iterations = [], 0
+    for line in scene.lines:
+        d0 = fairlead_motion(scene.motion, t0)[0]
+        moved = Line(line.name, line.anchor, line.fairlead + d0, line.segments, line.order)
+        result = solve_static(build_system(scene, moved, dynamic=False),
+                              tolerance=scene.solver.tolerance,
+                              max_iterations=scene.solver.max_iterations)
+        states.append(result.X)
+        iterations += result.iterations
+    return states, iterations
+
+
+def _bounds(scene, margin=0.1):
+    points = np.array([p for line in scene.lines for p in (line.anchor, line.fairlead)])
+    lo, hi = points[:, :2].min(axis=0), points[:, :2].max(axis=0)
+    pad = margin * max(float(np.max(hi - lo)), 1.0)
+    return ((lo[0] - pad, hi[0] + pad), (lo[1] - pad, hi[1] + pad))
+
+
+def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
+    """Run a scene in the time domain and write its outputs; returns the summary dict."""
+    from .geometry.export import write_seabed_vtu
+
+    solver = scene.solver
+    duration = float(solver.duration if duration is None else duration)
+    dt = float(solver.dt if dt is None else dt)
+    out_dir = out_dir or scene.output.dir
+    os.makedirs(out_dir, exist_ok=True)
+    start = time.perf_counter()
+    write_seabed_vtu(scene.seabed, os.path.join(out_dir, "seabed.vtu"), _bounds(scene))
+    states, static_iterations = start_states(scene)
+    integrator_class = INTEGRATORS[solver.integrator]
+    options = {"rho_inf": solver.rho_inf} if solver.integrator == "generalized-alpha" else {}
+    integrators = [integrator_class(build_system(scene, line), X0, boundary_path(scene, line),
+                                    dt=dt, tolerance=solver.tolerance, **options)
+                   for line, X0 in zip(scene.lines, states)]
+    frames = TimeSeriesWriter(out_dir, scene.name)
+    tracker = _Extremes([line.name for line in scene.lines])
+    summary = {"scene": scene.name, "seabed": scene.seabed.describe(), "notes": list(scene.notes),
+               "static_newton_iterations": static_iterations, "dt": dt, "duration": duration}
+    bar = _progress(progress, duration)
+    every = max(scene.output.every, dt)
+    next_frame = 0.0
+    status = "completed"
+    try:
+        with open(os.path.join(out_dir, "tensions.csv"), "w", newline="") as handle:
+            table = csv.writer(handle)
+            table.writerow(_columns(scene))
+            while True:
+                t = integrators[0].t
+                forces = [integ.reactions() for integ in integrators]
+                table.writerow([f"{t:.10g}"] + [f"{x:.10g}" for f, a in forces for x in
+                                                (np.linalg.norm(f), np.linalg.norm(a), *f)])
+                tracker.update(t, forces)
+                if t >= next_frame - 1e-9 * dt:
+                    frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V) for i in integrators]))
+                    next_frame += every
+                if t >= duration - 1e-9 * dt:
+                    break
+                step = min(dt, duration - t)
+                for integ in integrators:
+                    integ.step(step)
+                handle.flush()
+                if bar is not None:
+                    bar.update(step)
+    except KeyboardInterrupt:
+        status = "interrupted"
+        raise
+    except Exception as error:
+        status = f"stopped: {error}"
+        raise
+    finally:
+        if bar is not None:
+            bar.close()
+        stats = [integ.statistics() for integ in integrators]
+        summary.update({
+            "status": status, "completed": status == "completed",
+            "simulated_time_s": integrators[0].t, "frames": len(frames.frames),
+            "wall_time_s": time.perf_counter() - start,
+            "steps": sum(s["steps"] for s in stats),
+            "newton_iterations": sum(s["newton_iterations"] for s in stats),
+            "integrator": stats, "tension_extremes": tracker.as_dict()})
+        write_atomic(os.path.join(out_dir, "summary.json"), json.dumps(summary, indent=1))
+    return summary
+
+
+def _columns(scene):
+    names = ["fairlead_tension", "anchor_tension", "fx", "fy", "fz"]
+    if len(scene.lines) == 1:
+        return ["t"] + names
+    return ["t"] + [f"{line.name}:{n}" for line in scene.lines for n in names]
+
+
+def _progress(progress, duration):
+    show = sys.stderr.isatty() if progress is None else progress
+    if not show:
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=duration, unit="s", desc="cablefem run", bar_format="{l_bar}{bar}| {n:.1f}/{total:.1f} s [{elapsed}<{remaining}]")
+
+
+class _Extremes:
+    """Largest and smallest fairlead and anchor tensions per line, with their times."""
+
+    def __init__(self, names):
+        self.names = names
+        self.table = {n: {} for n in names}
+
+    def update(self, t, forces):
+        for name, (fairlead, anchor) in zip(self.names, forces):
+            for key, value in (("fairlead_tension", np.linalg.norm(fairlead)),
+                               ("anchor_tension", np.linalg.norm(anchor))):
+                entry = self.table[name]
+                if f"{key}_max" not in entry or value > entry[f"{key}_max"]:
+                    entry[f"{key}_max"], entry[f"{key}_max_t"] = float(value), float(t)
+                if f"{key}_min" not in entry or value < entry[f"{key}_min"]:
+                    entry[f"{key}_min"], entry[f"{key}_min_t"] = float(value), float(t)
+
+    def as_dict(self):
+        return self.table
