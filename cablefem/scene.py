@@ -157,39 +157,9 @@ def load_scene(path):
 
 
 def default_scene():
-    """The built-in scene of ``cablefem static`` / ``run`` with no SCENE (examples/flume_flat.toml).
+    """The built-in scene of ``cablefem static`` / ``run`` with no SCENE: the desire2023
+    steep-slope (19 deg) flume case with the dynamic 6 s / 5 m motion, 60 s at dt = 0.01 s,
+    40 P1 elements (``cablefem.scenes.flume_scene``; examples/flume_steep.toml)."""
+    from .scenes import flume_scene
 
-    The Table 5 chain of desire2023 (L = 635 m, 835.4 kg/m, d = 0.3539 m,
-    EA = 3.15e9 N, beta = 0.001 s, Cd_n 2.5, Cd_t 0.5, Ca_n 3.8, ground 3e5 N/m^3,
-    isotropic friction mu 0.3, v_c 0.01 m/s) over a horizontal seabed 150 m deep:
-    the flume ran 1.8-2.5 m deep at 1:75 (135-187.5 m), and 150 m is 2.0 m at
-    model scale, inside that range. Anchor at x = -560 m, fairlead at the origin
-    (desire2023 frame): 412 m of chain rests on the seabed and the fairlead
-    tension is about 1.7 MN (inextensible catenary), and the line still touches
-    down at the largest flume excursion (15 m drift + 2.5 m). Motion: the
-    flume's high-frequency case (5 m surge amplitude, 6 s period, no drift),
-    ramped in over one period so the run starts without a velocity jump; 60 s
-    (10 periods) with BDF2 at dt = 0.01 s; 40 P1 elements.
-    """
-    from .geometry import Horizontal
-    from .line import Line, LineType, Segment
-
-    chain = LineType("chain", diameter=0.3539, mass=835.4, EA=3.15e9, damping=0.001,
-                     Cd_normal=2.5, Cd_tangential=0.5, Ca_normal=3.8, Ca_tangential=0.0)
-    line = Line("line1", anchor=(-560.0, 0.0, -150.0), fairlead=(0.0, 0.0, 0.0),
-                segments=(Segment(chain, 635.0, 40),), order=1)
-    seabed = Horizontal(150.0)
-    return Scene(
-        name="flume-flat",
-        lines=[line],
-        seabed=seabed,
-        contact=Contact(stiffness=3.0e5, damping_ratio=1.0),
-        environment=Environment(water_density=1025.0, gravity=9.81),
-        friction=Friction(model="isotropic", mu=0.3, v_threshold=0.01),
-        motion=Motion(kind="harmonic", amplitude=(5.0, 0.0, 0.0), period=6.0, ramp=6.0),
-        solver=Solver(integrator="bdf2", dt=0.01, duration=60.0),
-        output=Output(dir="out", every=0.1),
-        source=None,
-        notes=["built-in default scene (desire2023 Table 5 line, flume flat case)",
-               f"seabed: {seabed.describe()}"],
-    )
+    return flume_scene("steep", "dynamic")

@@ -10,6 +10,7 @@ import pytest
 from cablefem import InputError
 from cablefem.io.moordyn_input import damping_time
 from cablefem.scene import default_scene, load_scene
+from cablefem.scenes import flume_scene
 
 EXAMPLES = os.path.join(os.path.dirname(__file__), "..", "examples")
 
@@ -66,22 +67,24 @@ def test_example_loads_with_its_lines_anchor_first(name):
         assert len(scene.lines[0].segments) == n_segments
 
 
-def test_default_scene_is_the_flume_flat_example():
-    built, loaded = default_scene(), load_scene(example("flume_flat.toml"))
+@pytest.mark.parametrize("built, name", [(default_scene, "flume_steep.toml"),
+                                         (lambda: flume_scene("flat"), "flume_flat.toml")])
+def test_built_in_scenes_equal_their_examples(built, name):
+    built, loaded = built(), load_scene(example(name))
     assert_same_lines(built.lines, loaded.lines, rtol=0.0)
     for part in ("contact", "environment", "friction", "motion", "solver", "output"):
         assert getattr(built, part) == getattr(loaded, part), part
     assert built.seabed.describe() == loaded.seabed.describe()
 
 
-def test_default_scene_is_table5_line_over_150m():
-    scene = default_scene()
+def test_flat_flume_scene_is_table5_line_over_100m():
+    scene = flume_scene("flat")
     line = scene.lines[0]
     chain = line.segments[0].type
     assert (chain.diameter, chain.mass, chain.EA, chain.damping) == (0.3539, 835.4, 3.15e9, 0.001)
     assert (chain.Cd_normal, chain.Cd_tangential, chain.Ca_normal) == (2.5, 0.5, 3.8)
     assert line.segments[0].elements == 40 and line.order == 1
-    assert scene.seabed.depth == 150.0 and scene.contact.stiffness == 3.0e5
+    assert scene.seabed.depth == 100.0 and scene.contact.stiffness == 3.0e5
     assert (scene.friction.model, scene.friction.mu, scene.friction.v_threshold) == ("isotropic", 0.3, 0.01)
 
 
@@ -98,7 +101,7 @@ def test_toml_and_moordyn_files_of_the_flume_give_identical_lines():
 
 
 def test_toml_wrapping_the_moordyn_file_rebuilds_the_default_scene():
-    wrapped, built = load_scene(example("flume_flat_moordyn.toml")), default_scene()
+    wrapped, built = load_scene(example("flume_flat_moordyn.toml")), flume_scene("flat")
     assert_same_lines(wrapped.lines, built.lines)
     assert wrapped.contact == built.contact  # damping_ratio written in the TOML overrides cBot
     assert (wrapped.motion, wrapped.solver, wrapped.environment) == (built.motion, built.solver, built.environment)

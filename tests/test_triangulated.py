@@ -19,8 +19,7 @@ from cablefem.geometry import Plane, TriangulatedSurface
 from cablefem.geometry.planes import _grid_triangles
 from cablefem.geometry.readers import meshio_surface, xyz
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the verification package
-from verification.projection import run as study  # noqa: E402
+from verification.projection import run as study
 
 FIELDS = ("gap", "direction", "closest", "gap_gradient", "direction_gradient")
 

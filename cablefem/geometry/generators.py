@@ -213,3 +213,27 @@ def diamond_square(n, smoothness=0.3, amplitude=10.0, seed=0,
     fitted, *_ = np.linalg.lstsq(basis, height.ravel(), rcond=None)
     detrended = height - (basis @ fitted).reshape(height.shape)
     return DepthGrid(x, y, detrended - mean_depth + tilt[0] * dx + tilt[1] * dy)
+
+
+def triangulated_step(grid, band=2.0, spacing=25.0):
+    """A ``TriangulatedSurface`` of a step DepthGrid (uniform in y) for the vertex-normal projection.
+
+    Vertex normals average the faces around a vertex, so the direction d_P turns
+    continuously across each corner (desire2023 Sec. 2.2.2.2) over the faces touching
+    it: extra node lines at the corners +- ``band`` [m] keep that turn within the band,
+    and the flat floors are split every ``spacing`` [m].
+    """
+    from .planes import _grid_triangles
+    from .triangulated import TriangulatedSurface
+
+    corners = grid.x[1:-1]
+    regular = np.arange(grid.x[0], grid.x[-1] + spacing, spacing)
+    x = np.unique(np.concatenate([grid.x, corners - band, corners + band,
+                                  regular[(regular > grid.x[0]) & (regular < grid.x[-1])]]))
+    keep = np.concatenate([[True], np.diff(x) > 1e-6])
+    x = x[keep]
+    y = grid.y
+    X, Y = np.meshgrid(x, y)
+    xy = np.column_stack([X.ravel(), Y.ravel()])
+    vertices = np.column_stack([xy, grid.elevation(xy)])
+    return TriangulatedSurface(vertices, _grid_triangles(len(x), len(y)))
