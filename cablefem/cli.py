@@ -39,15 +39,15 @@ def write_json(path, data):
 def solve_scene_static(scene):
     """Static equilibrium of every line of a scene: (list of LineReport, Newton iterations, results)."""
     from .results import report
-    from .statics import solve_static
-    from .system import LineSystem
+    from .statics import solve_line
 
     reports, results, iterations = [], [], 0
     for line in scene.lines:
-        system = LineSystem(line, scene.seabed, scene.contact, scene.environment,
-                            assembly=scene.solver.assembly)
-        result = solve_static(system, tolerance=scene.solver.tolerance,
-                              max_iterations=scene.solver.max_iterations)
+        system, result = solve_line(line, scene.seabed, scene.contact, scene.environment,
+                                    fit_touchdown=scene.solver.fit_touchdown,
+                                    tolerance=scene.solver.tolerance,
+                                    max_iterations=scene.solver.max_iterations,
+                                    assembly=scene.solver.assembly)
         iterations += result.iterations
         results.append(result)
         reports.append(report(system, result.X))

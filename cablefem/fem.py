@@ -58,10 +58,14 @@ class LineFEM:
         self.n_vertices = self.mesh.p.shape[1]
         self.n_elements = self.mesh.t.shape[1]
         self.element_dofs = np.ascontiguousarray(sb.element_dofs.T)  # (nel, nloc)
-        self.phi = np.array([np.asarray(b[0]) for b in sb.basis])  # (nloc, nel, nq)
-        self.dphi = np.array([b[0].grad[0] for b in sb.basis])  # d/ds, (nloc, nel, nq)
-        self.dx = sb.dx  # quadrature weight x Jacobian, (nel, nq)
-        self.s = np.asarray(sb.global_coordinates())[0]  # arc length at quadrature points, (nel, nq)
+        self.full = Rule(sb)
+        # the axial term with one Gauss point fewer: a polynomial element cannot follow a
+        # curved line at constant stretch, and at full integration a stiff line "locks"
+        # (spurious strain of order (kappa h)^2, against T/EA ~ 1e-4); p points remove it
+        reduced = Basis(self.mesh, element, intorder=max(1, 2 * self.order - 1))
+        self.reduced = Rule(reduced)
+        self.reduced_basis = Basis(self.mesh, ElementVector(element, dim=3), quadrature=reduced.quadrature)
+        self.phi, self.dphi, self.dx, self.s = self.full.phi, self.full.dphi, self.full.dx, self.full.s
         self.segment = line.element_segments()  # (nel,)
         self.anchor_dof = 0
         self.fairlead_dof = self.n_vertices - 1
@@ -93,10 +97,12 @@ class LineFEM:
         self._free = _CsrPattern(r[keep], c[keep], free_vec.size, keep)
 
     # ----------------------------------------------------------- evaluation
-    def at_quadrature(self, X):
-        """Values and arc-length derivatives of X (N, 3) at quadrature points, each (3, nel, nq)."""
+    def at_quadrature(self, X, rule=None):
+        """Values and arc-length derivatives of X (N, 3) at the points of ``rule`` (default: full),
+        each (3, nel, nq)."""
+        rule = rule or self.full
         Xe = X[self.element_dofs]  # (nel, nloc, 3)
-        return np.einsum("elc,leq->ceq", Xe, self.phi), np.einsum("elc,leq->ceq", Xe, self.dphi)
+        return np.einsum("elc,leq->ceq", Xe, rule.phi), np.einsum("elc,leq->ceq", Xe, rule.dphi)
 
     def evaluate(self, X, s):
         """Positions (n, 3) of state X (N, 3) at unstretched arc lengths s (n,) [m]."""
@@ -150,27 +156,38 @@ class LineFEM:
         return values.T.reshape(3, *self.s.shape), None
 
     # ------------------------------------------------------------- assembly
-    def assemble_vector(self, force=None, flux=None):
-        """Residual rows (N, 3): int (flux . phi' - force . phi) ds over all elements."""
-        local = 0.0
+    def local_vector(self, force=None, flux=None, rule=None):
+        """Element rows (nel, nloc, 3) of int (flux . phi' - force . phi) ds at ``rule``'s points."""
+        rule = rule or self.full
+        local = np.zeros(self.element_dofs.shape + (3,))
         if flux is not None:
-            local = local + np.einsum("ceq,leq,eq->elc", flux, self.dphi, self.dx)
+            local += np.einsum("ceq,leq,eq->elc", flux, rule.dphi, rule.dx)
         if force is not None:
-            local = local - np.einsum("ceq,leq,eq->elc", force, self.phi, self.dx)
-        if np.isscalar(local):
-            return np.zeros((self.n_dofs, 3))
+            local -= np.einsum("ceq,leq,eq->elc", force, rule.phi, rule.dx)
+        return local
+
+    def scatter(self, local):
+        """Global rows (N, 3) summed from element rows (nel, nloc, 3)."""
         return self._scatter @ local.reshape(-1, 3)
 
-    def element_matrices(self, value_value=None, value_grad=None, grad_value=None, grad_grad=None):
+    def assemble_vector(self, force=None, flux=None, rule=None):
+        """Residual rows (N, 3): int (flux . phi' - force . phi) ds over all elements."""
+        return self.scatter(self.local_vector(force, flux, rule))
+
+    def element_matrices(self, value_value=None, value_grad=None, grad_value=None, grad_grad=None,
+                         rule=None, out=None):
         """Local matrices (nel, nloc, 3, nloc, 3) of int v.(A u + B u') + v'.(C u + D u') ds
-        for the blocks A, B, C, D given as (3, 3, nel, nq) arrays (None for zero)."""
+        for the blocks A, B, C, D given as (3, 3, nel, nq) arrays (None for zero) at the
+        points of ``rule``; added to ``out`` when given."""
+        rule = rule or self.full
         nel, nloc = self.element_dofs.shape
-        out = np.zeros((nel, nloc, 3, nloc, 3))
-        pairs = ((value_value, self.phi, self.phi), (value_grad, self.phi, self.dphi),
-                 (grad_value, self.dphi, self.phi), (grad_grad, self.dphi, self.dphi))
+        if out is None:
+            out = np.zeros((nel, nloc, 3, nloc, 3))
+        pairs = ((value_value, rule.phi, rule.phi), (value_grad, rule.phi, rule.dphi),
+                 (grad_value, rule.dphi, rule.phi), (grad_grad, rule.dphi, rule.dphi))
         for block, test, trial in pairs:
             if block is not None:
-                weighted = block * self.dx
+                weighted = block * rule.dx
                 out += np.einsum("leq,abeq,meq->elamb", test, weighted, trial, optimize=True)
         return out
 
@@ -184,6 +201,18 @@ class LineFEM:
         local = np.einsum("leq,eq,meq,e->elm", self.phi, self.dx, self.phi, density)
         eye = np.eye(3)
         return self.assemble_matrix(np.einsum("elm,ab->elamb", local, eye), free_only)
+
+
+class Rule:
+    """Basis values at one quadrature rule: phi, dphi/ds (nloc, nel, nq), weights x Jacobian
+    dx (nel, nq) and the arc lengths s (nel, nq) of the points."""
+
+    def __init__(self, scalar_basis):
+        self.quadrature = scalar_basis.quadrature
+        self.phi = np.array([np.asarray(b[0]) for b in scalar_basis.basis])
+        self.dphi = np.array([b[0].grad[0] for b in scalar_basis.basis])
+        self.dx = scalar_basis.dx
+        self.s = np.asarray(scalar_basis.global_coordinates())[0]
 
 
 class _CsrPattern:

@@ -139,6 +139,21 @@ class Line:
         """Strain a straight line from anchor to fairlead would need (negative if slack)."""
         return float(np.linalg.norm(self.fairlead - self.anchor) / self.unstretched_length - 1.0)
 
+    def split_at(self, s):
+        """The same line with a mesh vertex at arc length s [m]: the segment holding s is split
+        in two of the same type, sharing its elements in proportion (at least one each)."""
+        bounds = self.segment_bounds
+        i = int(np.clip(np.searchsorted(bounds, s, side="right") - 1, 0, len(self.segments) - 1))
+        seg = self.segments[i]
+        a, b = bounds[i], bounds[i + 1]
+        if not (a < s < b) or min(s - a, b - s) <= 1e-9 * self.unstretched_length:
+            return self
+        left = int(np.clip(round(seg.elements * (s - a) / (b - a)), 1, max(1, seg.elements - 1)))
+        right = max(1, seg.elements - left)
+        pieces = (Segment(seg.type, s - a, left), Segment(seg.type, b - s, right))
+        segments = self.segments[:i] + pieces + self.segments[i + 1:]
+        return Line(self.name, self.anchor, self.fairlead, segments, self.order)
+
     def with_order(self, order):
         """The same line with another element order."""
         return Line(self.name, self.anchor, self.fairlead, self.segments, order)

@@ -8,6 +8,7 @@ tensions differentiated from the positions.
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.optimize import brentq
 
 
 @dataclass
@@ -55,7 +56,7 @@ def end_forces(system, X, inertia=None):
 
 def touchdown(system, X, samples_per_element=16):
     """Arc length [m] of the touchdown point: the last point, counted from the anchor, where the
-    line penetrates the seabed (d_G <= 0), refined linearly between samples; None without contact."""
+    line penetrates the seabed (d_G <= 0), refined by root finding between samples; None without contact."""
     nodes = system.fem.mesh.p[0]
     fractions = np.linspace(0.0, 1.0, samples_per_element + 1)[:-1]
     s = np.append((nodes[:-1, None] + np.diff(nodes)[:, None] * fractions).ravel(), nodes[-1])
@@ -66,8 +67,13 @@ def touchdown(system, X, samples_per_element=16):
     last = touching[-1]
     if last == s.size - 1:
         return float(s[-1])
-    g0, g1 = gap[last], gap[last + 1]
-    return float(s[last] + (s[last + 1] - s[last]) * g0 / (g0 - g1))
+    def gap(q):
+        return system.gap_at(X, np.array([q]))[0]
+
+    a, b = s[last], s[last + 1]
+    if gap(a) * gap(b) > 0:  # d_G touches zero without crossing: no root to refine
+        return float(a)
+    return float(brentq(gap, a, b, xtol=1e-12 * nodes[-1], rtol=1e-14))
 
 
 def report(system, X):

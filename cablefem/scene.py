@@ -74,7 +74,8 @@ INTEGRATORS = ("bdf2", "generalized-alpha")
 class Solver:
     """Solver settings: integrator ("bdf2" | "generalized-alpha"), time step [s], duration [s],
     relative residual tolerance, Newton iteration cap, the assembly path ("kernel" or
-    "forms"), and the spectral radius at infinite frequency of generalised-alpha."""
+    "forms"), the spectral radius at infinite frequency of generalised-alpha, and whether
+    statics fits a mesh vertex to the touchdown point (``cablefem.statics.solve_line``)."""
 
     integrator: str = "bdf2"
     dt: float = 0.01
@@ -83,6 +84,7 @@ class Solver:
     max_iterations: int = 50
     assembly: str = "kernel"
     rho_inf: float = 0.8
+    fit_touchdown: bool = True
 
 
 @dataclass(frozen=True)

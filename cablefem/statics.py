@@ -86,6 +86,7 @@ def newton(system, X, tolerance=1e-8, max_iterations=50, scale=None):
     X = X.copy()
     residual, blocks = system.evaluate(system.state(X))
     norm = np.linalg.norm(residual[free]) / scale
+    energy = system.energy(X)
     history = [norm]
     for iteration in range(1, max_iterations + 1):
         if norm <= tolerance:
@@ -98,19 +99,25 @@ def newton(system, X, tolerance=1e-8, max_iterations=50, scale=None):
         if not np.all(np.isfinite(step)):
             return X, iteration, norm, history, False
         small = np.max(np.abs(step)) <= tolerance * length
+        slope = float(np.sum(residual[free] * step))  # d(energy)/d(lambda) at lambda = 0
         lam, accepted = 1.0, False
         for _ in range(30):
             trial = X.copy()
             trial[free] += lam * step
             residual_t, blocks_t = system.evaluate(system.state(trial))
             norm_t = np.linalg.norm(residual_t[free]) / scale
-            if small or norm_t <= (1.0 - 1e-4 * lam) * norm:
+            energy_t = system.energy(trial)
+            # Armijo on the residual (Kelley 2003), or on the potential energy along a descent
+            # direction: with a stiff seabed the residual jumps when a step presses a point
+            # into the ground, while the energy still measures progress
+            if (small or norm_t <= (1.0 - 1e-4 * lam) * norm
+                    or (slope < 0 and energy_t <= energy + 1e-4 * lam * slope)):
                 accepted = True
                 break
             lam = _parabolic_step(lam, norm, norm_t)
         if not accepted:
             return X, iteration, norm, history, False
-        X, residual, blocks, norm = trial, residual_t, blocks_t, norm_t
+        X, residual, blocks, norm, energy = trial, residual_t, blocks_t, norm_t, energy_t
         history.append(norm)
         if small or (lam == 1.0 and np.max(np.abs(step)) <= tolerance * length):
             return X, iteration, norm, history, True
@@ -225,3 +232,70 @@ def _stiffness_continuation(system, X, tolerance, max_iterations, factor=10.0):
     finally:
         contact.stiffness, contact.damping = target_k, target_c
     return X, total, norm, history, True
+
+
+def solve_line(line, seabed, contact, environment, fit_touchdown=True, tolerance=1e-8,
+               max_iterations=50, assembly="kernel", max_fits=4):
+    """Static equilibrium of one line; returns (LineSystem, StaticResult).
+
+    The solution has a jump of curvature at the touchdown point (straight on the seabed,
+    a catenary above it) that no element can hold inside itself: unfitted, it limits every
+    element order to the slow convergence of obstacle problems. With ``fit_touchdown``, on a
+    plane seabed under the anchor, the mesh gets a vertex at the touchdown and is re-solved
+    until that vertex stops moving, so each element holds a smooth piece and the element
+    order pays off (verification/elastic_catenary). The touchdown is located from the
+    seabed's total reaction: on a frictionless plane the resting part carries exactly its own
+    normal weight, so the reaction fixes the resting length, where the place at which the
+    gap changes sign (tangent to the seabed there) is ill-conditioned.
+    """
+    from .geometry import Plane
+    from .system import LineSystem
+
+    def build(candidate):
+        return LineSystem(candidate, seabed, contact, environment, assembly=assembly)
+
+    system = build(line)
+    result = solve_static(system, tolerance=tolerance, max_iterations=max_iterations)
+    length = line.unstretched_length
+    on_plane = isinstance(seabed, Plane) and abs(seabed.gap_only(line.anchor[None])[0]) <= 1e-6 * length
+    if not (fit_touchdown and on_plane):
+        return system, result
+    iterations, elapsed = result.iterations, result.wall_time_s
+    vertex = None
+    for _ in range(max_fits):
+        estimate = resting_length(system, result.X)
+        if estimate is None or not (0.0 < estimate < length) or (
+                vertex is not None and abs(estimate - vertex) <= 1e-6 * length):
+            break
+        vertex = estimate
+        fitted = build(line.split_at(vertex))
+        previous_system, previous = system, result
+        guess = fitted.fem.interpolate(lambda s: previous_system.fem.evaluate(previous.X, s))
+        result = solve_static(fitted, guess, tolerance=tolerance, max_iterations=max_iterations)
+        system = fitted
+        iterations += result.iterations
+        elapsed += result.wall_time_s
+    result.iterations, result.wall_time_s = iterations, elapsed
+    return system, result
+
+
+def resting_length(system, X):
+    """Arc length [m] from the anchor that the seabed's reaction (contact force plus the anchor's
+    normal reaction) can carry at the line's normal weight, on a plane seabed; None without contact."""
+    state = system.state(X)
+    normal = system.seabed.normal
+    force = system.contact.evaluate(state, jacobian=False).force
+    reaction = np.sum(np.einsum("ceq,c->eq", force, normal) * system.fem.full.dx)
+    if reaction <= 0.0:
+        return None
+    reaction += system.residual(X)[system.fem.anchor_dof] @ normal
+    # cumulative normal weight along the line, element by element (piecewise constant w)
+    env = system.environment
+    props = system.props
+    w = (props["mass"] - env.water_density * props["area"]) * env.gravity * normal[2]
+    nodes = system.fem.mesh.p[0]
+    cumulative = np.concatenate([[0.0], np.cumsum(w * np.diff(nodes))])
+    k = int(np.searchsorted(cumulative, reaction)) - 1
+    if k < 0 or k >= len(w):
+        return None
+    return float(nodes[k] + (reaction - cumulative[k]) / w[k])

@@ -63,24 +63,31 @@ class LineSystem:
         return [self.fem.anchor_dof, self.fem.fairlead_dof]
 
     def state(self, X, V=None, A=None, t=0.0):
-        """Kinematics at quadrature points for state X (N, 3), velocity V and acceleration A."""
-        r, dr = self.fem.at_quadrature(X)
-        v = dv = a = None
-        if V is not None:
-            v, dv = self.fem.at_quadrature(V)
-        if A is not None:
-            a, _ = self.fem.at_quadrature(A)
-        return State(r, dr, v, dv, a, t)
+        """Kinematics at the full quadrature points for state X (N, 3), velocity V and
+        acceleration A; ``.reduced`` holds them at the reduced points (see ``LineFEM``)."""
+        states = []
+        for rule in (self.fem.full, self.fem.reduced):
+            r, dr = self.fem.at_quadrature(X, rule)
+            v = dv = a = None
+            if V is not None:
+                v, dv = self.fem.at_quadrature(V, rule)
+            if A is not None:
+                a, _ = self.fem.at_quadrature(A, rule)
+            states.append(State(r, dr, v, dv, a, t))
+        full, reduced = states
+        full.reduced = reduced
+        return full
 
     def evaluate(self, state, jacobian=True, velocity_factor=0.0, acceleration_factor=0.0):
         """Residual rows (N, 3) of the loads and, with ``jacobian``, the tangent blocks
-        (A, B, C, D) of dG/dX at quadrature points (see ``cablefem.forms``), where
+        (A, B, C, D) of dG/dX at quadrature points (see ``cablefem.forms``), per rule, where
         dV/dX = velocity_factor and dA/dX = acceleration_factor (both 0 in statics)."""
-        force = flux = None
-        blocks = [None, None, None, None]
+        sums = {}  # rule name -> [force, flux, A, B, C, D]
         for load in self.loads:
-            terms = load.evaluate(state, jacobian)
-            force, flux = add(force, terms.force), add(flux, terms.flux)
+            rule = getattr(load, "rule", "full")
+            terms = load.evaluate(state.reduced if rule == "reduced" else state, jacobian)
+            acc = sums.setdefault(rule, [None] * 6)
+            acc[0], acc[1] = add(acc[0], terms.force), add(acc[1], terms.flux)
             if not jacobian:
                 continue
             for i, (base, rate, accel, sign) in enumerate((
@@ -90,30 +97,57 @@ class LineSystem:
                     (terms.flux_dr, terms.flux_dv, None, 1.0))):
                 block = _combine(base, rate, velocity_factor, accel, acceleration_factor)
                 if block is not None:
-                    blocks[i] = add(blocks[i], sign * block)
-        if self.assembly == "forms":
-            residual = self._forms_vector(force, flux)
-        else:
-            residual = self.fem.assemble_vector(force, flux)
-        return residual, (tuple(blocks) if jacobian else None)
+                    acc[2 + i] = add(acc[2 + i], sign * block)
+        residual = np.zeros((self.fem.n_dofs, 3))
+        local = np.zeros(self.fem.element_dofs.shape + (3,))
+        for rule, acc in sums.items():
+            if self.assembly == "forms":
+                residual += self._forms_vector(acc[0], acc[1], rule)
+            else:
+                local += self.fem.local_vector(acc[0], acc[1], self._rule(rule))
+        if self.assembly != "forms":
+            residual = self.fem.scatter(local)
+        blocks = {rule: tuple(acc[2:]) for rule, acc in sums.items()} if jacobian else None
+        return residual, blocks
+
+    def _rule(self, name):
+        return self.fem.reduced if name == "reduced" else self.fem.full
 
     def matrix(self, blocks, free_only=True):
         """Sparse tangent (CSR) from the blocks returned by ``evaluate``, free DOFs by default."""
         if self.assembly == "forms":
-            zero = np.zeros((3, 3) + self.fem.s.shape)
-            A, B, C, D = (zero if b is None else b for b in blocks)
-            K = forms.tangent.assemble(self.fem.basis, A=A, B=B, C=C, D=D).tocsr()
+            K = 0
+            for rule, parts in blocks.items():
+                basis = self.fem.reduced_basis if rule == "reduced" else self.fem.basis
+                zero = np.zeros((3, 3) + self._rule(rule).s.shape)
+                A, B, C, D = (zero if b is None else b for b in parts)
+                K = K + forms.tangent.assemble(basis, A=A, B=B, C=C, D=D).tocsr()
             if free_only:
                 free = self.fem.free_vector_dofs
                 K = K[free][:, free]
             return K
-        return self.fem.assemble_matrix(self.fem.element_matrices(*blocks), free_only)
+        local = None
+        for rule, parts in blocks.items():
+            local = self.fem.element_matrices(*parts, rule=self._rule(rule), out=local)
+        return self.fem.assemble_matrix(local, free_only)
 
-    def _forms_vector(self, force, flux):
-        zero = np.zeros((3,) + self.fem.s.shape)
+    def _forms_vector(self, force, flux, rule):
+        basis = self.fem.reduced_basis if rule == "reduced" else self.fem.basis
+        zero = np.zeros((3,) + self._rule(rule).s.shape)
         force = zero if force is None else force
         flux = zero if flux is None else flux
-        return forms.load_vector.assemble(self.fem.basis, force=force, flux=flux).reshape(-1, 3)
+        return forms.load_vector.assemble(basis, force=force, flux=flux).reshape(-1, 3)
+
+    def energy(self, X):
+        """Total potential energy [J] of the static loads at X (N, 3): strain energy, weight and
+        the seabed spring k min(d_G, 0)^2 / 2, whose gradient is the static residual (exactly on
+        planes and grids, to the projection's own accuracy on vertex-normal meshes)."""
+        state = self.state(X)
+        total = np.sum(self.tension.energy(state.reduced) * self.fem.reduced.dx)
+        total += np.sum(self.weight.energy(state) * self.fem.full.dx)
+        gap = self.seabed.gap_only(state.r.reshape(3, -1).T).reshape(self.fem.full.s.shape)
+        total += np.sum(0.5 * self.contact.stiffness * np.minimum(gap, 0.0) ** 2 * self.fem.full.dx)
+        return float(total)
 
     def residual(self, X, V=None, A=None, t=0.0):
         """Load residual rows (N, 3) [N] at state X (inertia not included)."""
@@ -126,8 +160,8 @@ class LineSystem:
         return axial_tension(dr, EA)[:, 0]
 
     def tension_strain(self, X):
-        """Strain |r'| - 1 at every quadrature point (nel, nq) of state X."""
-        return strain(self.fem.at_quadrature(X)[1])[0]
+        """Strain |r'| - 1 at the points (nel, nq) where the tension is evaluated, state X."""
+        return strain(self.fem.at_quadrature(X, self.fem.reduced)[1])[0]
 
     def gap_at(self, X, s):
         """Seabed penetration depth d_G [m] at arc lengths s (n,) (> 0 above the seabed)."""

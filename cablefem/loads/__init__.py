@@ -18,6 +18,7 @@ class State:
 
     r: position, dr: dr/ds; v, dv: velocity and its s-derivative (None in
     statics); a: acceleration (None unless an integrator supplies it); t: time [s].
+    A load evaluated at the reduced quadrature (``rule = "reduced"``) gets ``reduced``.
     """
 
     r: np.ndarray
@@ -26,6 +27,7 @@ class State:
     dv: np.ndarray | None = None
     a: np.ndarray | None = None
     t: float = 0.0
+    reduced: "State | None" = None  # the same kinematics at the reduced quadrature points
 
 
 @dataclass

@@ -23,3 +23,8 @@ class Weight:
         force = np.zeros_like(state.r)
         force[2] = -(self.dry - np.where(z < 0.0, self.buoyancy, 0.0))
         return Terms(force=force)
+
+    def energy(self, state):
+        """Potential energy density [J/m] (nel, nq): dry weight x z minus buoyancy x min(z, 0)."""
+        z = state.r[2]
+        return self.dry * z - self.buoyancy * np.minimum(z, 0.0)

@@ -37,7 +37,13 @@ def axial_tension(dr, EA, beta=None, dv=None):
 
 
 class Tension:
-    """Axial stiffness EA [N] and damping beta [s] per element, arrays of shape (nel,)."""
+    """Axial stiffness EA [N] and damping beta [s] per element, arrays of shape (nel,).
+
+    Evaluated at the reduced quadrature (p Gauss points for order p), which removes the
+    membrane locking of curved elements of a stiff line (``cablefem.fem.LineFEM``).
+    """
+
+    rule = "reduced"
 
     def __init__(self, EA, beta=None, compression=False):
         self.EA = np.asarray(EA, dtype=float)[:, None]
@@ -67,3 +73,9 @@ class Tension:
         terms.flux_dr = outer(t, dT_ddr) + (T / stretch) * (eye - tt) \
             + (SLACK_STIFFNESS * self.EA * (1.0 - on)) * eye
         return terms
+
+    def energy(self, state):
+        """Strain energy density EA e^2 / 2 [J/m] (nel, nq) of the elastic part (statics)."""
+        e, _ = strain(state.dr)
+        stretched = e if self.compression else np.maximum(e, 0.0)
+        return 0.5 * self.EA * stretched**2
