@@ -36,8 +36,11 @@ class Integrator:
 
     name = "integrator"
 
+    #: contraction factor of modified Newton above which the tangent is rebuilt
+    CONTRACTION = 0.3
+
     def __init__(self, system, X0, boundary, V0=None, t0=0.0, dt=0.01, tolerance=1e-8,
-                 max_iterations=12, lumped=False, min_dt=None):
+                 max_iterations=12, lumped=False, min_dt=None, reuse_jacobian=True):
         self.system = system
         fem = system.fem
         self.fem = fem
@@ -62,6 +65,15 @@ class Integrator:
         self.nfev = self.njev = self.nlu = 0
         self.newton_iterations = self.steps = self.rejected = 0
         self.residual_rows = None  # full residual M A + G at the current state, (N, 3)
+        self.reuse_jacobian = reuse_jacobian
+        self._lu, self._lu_factors = None, None
+        # positions converge when the force their error makes, EA / h * dx, is below the
+        # tolerance times the weight of an element: dx <= tol w h^2 / EA (floored at round-off)
+        h = float(np.min(np.diff(fem.mesh.p[0])))
+        weight = float(np.max(np.abs(system.weight.dry - system.weight.buoyancy)))
+        extent = float(np.max(np.abs(self.X))) + self.length
+        self.increment_tolerance = max(tolerance * weight * h * h / float(np.max(system.props["EA"])),
+                                       1e3 * np.finfo(float).eps * extent)
         self.A = self.initial_acceleration()
 
     # ------------------------------------------------------------ helpers
@@ -101,36 +113,56 @@ class Integrator:
 
         point(X1) -> (X, V, A) where the loads are evaluated; factors = (v_x, a_x, g_x) with
         d(X, V, A)/dX1 = g_x (1, v_x, a_x). Returns (X1, rows, ok), rows = M A + G (N, 3).
+
+        With ``reuse_jacobian`` the LU factors of the tangent are kept across iterations and
+        steps (modified Newton) and rebuilt when the step size changes, when the iteration
+        contracts slower than ``CONTRACTION`` or when it fails; an iteration converges when
+        the residual is below the tolerance or when the increment, extrapolated by the
+        observed contraction (rho / (1 - rho), Hairer & Wanner IV.8), is below the increment
+        tolerance. A fresh tangent gives Newton's quadratic convergence.
         """
-        fem, system = self.fem, self.system
-        free = fem.free_dofs
+        free = self.fem.free_dofs
         v_x, a_x, g_x = factors
         rows = None
-        for iteration in range(1, self.max_iterations + 1):
+        fresh = not self.reuse_jacobian or self._lu is None or self._lu_factors != factors
+        previous = None
+        for _ in range(self.max_iterations):
             X, V, A = point(X1)
-            residual, blocks = self.evaluate(X, V, A, t_eval, v_x, a_x)
+            residual, blocks = self.evaluate(X, V, A, t_eval, v_x, a_x, jacobian=fresh)
             rows = residual + self.inertia(A)
             norm = np.linalg.norm(rows[free]) / self.scale
             if not np.isfinite(norm):
-                return X1, rows, False
-            if norm <= self.tolerance and iteration > 1:
+                break
+            if norm <= self.tolerance and previous is not None:
                 return X1, rows, True
-            K = g_x * (system.matrix(blocks) + a_x * self.M_free)
-            self.njev += 1
-            self.nlu += 1
-            try:
-                dX = spla.spsolve(K.tocsc(), -rows[free].ravel()).reshape(-1, 3)
-            except RuntimeError:
-                return X1, rows, False
+            if fresh:
+                K = g_x * (self.system.matrix(blocks) + a_x * self.M_free)
+                self.njev += 1
+                try:
+                    self._lu = spla.splu(K.tocsc())
+                except RuntimeError:
+                    break
+                self.nlu += 1
+                self._lu_factors = factors
+            dX = self._lu.solve(-rows[free].ravel()).reshape(-1, 3)
             if not np.all(np.isfinite(dX)):
-                return X1, rows, False
+                break
             X1 = X1.copy()
             X1[free] += dX
             self.newton_iterations += 1
-            if np.max(np.abs(dX)) <= self.tolerance * self.length:
+            size = float(np.max(np.abs(dX)))
+            rho = size / previous if previous else None
+            if (fresh and size <= self.increment_tolerance) or (
+                    rho is not None and rho < 1 and size * rho / (1 - rho) <= self.increment_tolerance):
                 X, V, A = point(X1)
                 residual, _ = self.evaluate(X, V, A, t_eval, v_x, a_x, jacobian=False)
                 return X1, residual + self.inertia(A), True
+            fresh = not self.reuse_jacobian or (rho is not None and rho > self.CONTRACTION)
+            previous = size
+        if self.reuse_jacobian and not fresh:
+            self._lu = None  # retry the step with a fresh tangent before halving it
+            return self.newton(X1, point, factors, t_eval)
+        self._lu = None
         return X1, rows, False
 
     def evaluate(self, X, V, A, t, v_x, a_x, jacobian=True):

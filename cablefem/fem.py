@@ -78,10 +78,6 @@ class LineFEM:
     # ------------------------------------------------------------------ maps
     def _build_scatter(self):
         nel, nloc = self.element_dofs.shape
-        # vectors: local (nel, nloc) -> global rows, summed by one sparse product
-        cols = np.arange(nel * nloc)
-        self._scatter = sp.csr_matrix(
-            (np.ones(nel * nloc), (self.element_dofs.ravel(), cols)), shape=(self.n_dofs, nel * nloc))
         # matrices: local entry (e, l, a, m, b) -> CSR data index of the full and free systems
         comp = np.arange(3)
         rows = (3 * self.element_dofs[:, :, None, None, None] + comp[None, None, :, None, None])
@@ -101,8 +97,8 @@ class LineFEM:
         """Values and arc-length derivatives of X (N, 3) at the points of ``rule`` (default: full),
         each (3, nel, nq)."""
         rule = rule or self.full
-        Xe = X[self.element_dofs]  # (nel, nloc, 3)
-        return np.einsum("elc,leq->ceq", Xe, rule.phi), np.einsum("elc,leq->ceq", Xe, rule.dphi)
+        shape = (3,) + rule.s.shape
+        return (rule.value_op @ X).T.reshape(shape), (rule.derivative_op @ X).T.reshape(shape)
 
     def evaluate(self, X, s):
         """Positions (n, 3) of state X (N, 3) at unstretched arc lengths s (n,) [m]."""
@@ -156,23 +152,16 @@ class LineFEM:
         return values.T.reshape(3, *self.s.shape), None
 
     # ------------------------------------------------------------- assembly
-    def local_vector(self, force=None, flux=None, rule=None):
-        """Element rows (nel, nloc, 3) of int (flux . phi' - force . phi) ds at ``rule``'s points."""
-        rule = rule or self.full
-        local = np.zeros(self.element_dofs.shape + (3,))
-        if flux is not None:
-            local += np.einsum("ceq,leq,eq->elc", flux, rule.dphi, rule.dx)
-        if force is not None:
-            local -= np.einsum("ceq,leq,eq->elc", force, rule.phi, rule.dx)
-        return local
-
-    def scatter(self, local):
-        """Global rows (N, 3) summed from element rows (nel, nloc, 3)."""
-        return self._scatter @ local.reshape(-1, 3)
-
     def assemble_vector(self, force=None, flux=None, rule=None):
-        """Residual rows (N, 3): int (flux . phi' - force . phi) ds over all elements."""
-        return self.scatter(self.local_vector(force, flux, rule))
+        """Residual rows (N, 3): int (flux . phi' - force . phi) ds over all elements, with
+        force and flux (3, nel, nq) at the points of ``rule`` (default: full)."""
+        rule = rule or self.full
+        out = np.zeros((self.n_dofs, 3))
+        if flux is not None:
+            out += rule.derivative_scatter @ flux.reshape(3, -1).T
+        if force is not None:
+            out -= rule.value_scatter @ force.reshape(3, -1).T
+        return out
 
     def element_matrices(self, value_value=None, value_grad=None, grad_value=None, grad_grad=None,
                          rule=None, out=None):
@@ -183,12 +172,9 @@ class LineFEM:
         nel, nloc = self.element_dofs.shape
         if out is None:
             out = np.zeros((nel, nloc, 3, nloc, 3))
-        pairs = ((value_value, rule.phi, rule.phi), (value_grad, rule.phi, rule.dphi),
-                 (grad_value, rule.dphi, rule.phi), (grad_grad, rule.dphi, rule.dphi))
-        for block, test, trial in pairs:
+        for block, products in zip((value_value, value_grad, grad_value, grad_grad), rule.products):
             if block is not None:
-                weighted = block * rule.dx
-                out += np.einsum("leq,abeq,meq->elamb", test, weighted, trial, optimize=True)
+                out += np.einsum("abeq,lmeq->elamb", block, products)
         return out
 
     def assemble_matrix(self, local, free_only=True):
@@ -209,10 +195,33 @@ class Rule:
 
     def __init__(self, scalar_basis):
         self.quadrature = scalar_basis.quadrature
+        dofs = scalar_basis.element_dofs.T  # (nel, nloc)
         self.phi = np.array([np.asarray(b[0]) for b in scalar_basis.basis])
         self.dphi = np.array([b[0].grad[0] for b in scalar_basis.basis])
         self.dx = scalar_basis.dx
         self.s = np.asarray(scalar_basis.global_coordinates())[0]
+        # weighted products of test and trial functions (nloc, nloc, nel, nq), in the order
+        # value-value, value-derivative, derivative-value, derivative-derivative
+        self.products = [np.einsum("leq,meq,eq->lmeq", a, b, self.dx)
+                         for a, b in ((self.phi, self.phi), (self.phi, self.dphi),
+                                      (self.dphi, self.phi), (self.dphi, self.dphi))]
+        # sparse interpolation (nel nq, N) and weighted scatter (N, nel nq) operators
+        nloc, nel, nq = self.phi.shape
+        rows = np.broadcast_to(np.arange(nel * nq).reshape(nel, 1, nq), (nel, nloc, nq)).ravel()
+        cols = np.broadcast_to(dofs[:, :, None], (nel, nloc, nq)).ravel()
+        shape = (nel * nq, scalar_basis.N)
+
+        def operator(values):
+            return sp.csr_matrix((np.moveaxis(values, 0, 1).ravel(), (rows, cols)), shape=shape)
+
+        self.value_op, self.derivative_op = operator(self.phi), operator(self.dphi)
+        weights = sp.diags(self.dx.ravel())
+        self.value_scatter = (self.value_op.T @ weights).tocsr()
+        self.derivative_scatter = (self.derivative_op.T @ weights).tocsr()
+
+    def interpolate(self, Y):
+        """Values and s-derivatives (nel nq, k) at the rule's points of coefficients Y (N, k)."""
+        return self.value_op @ Y, self.derivative_op @ Y
 
 
 class _CsrPattern:

@@ -65,14 +65,20 @@ class LineSystem:
     def state(self, X, V=None, A=None, t=0.0):
         """Kinematics at the full quadrature points for state X (N, 3), velocity V and
         acceleration A; ``.reduced`` holds them at the reduced points (see ``LineFEM``)."""
+        columns = [X] + [Y for Y in (V, A) if Y is not None]
+        stacked = np.hstack(columns) if len(columns) > 1 else X
         states = []
         for rule in (self.fem.full, self.fem.reduced):
-            r, dr = self.fem.at_quadrature(X, rule)
+            values, derivatives = rule.interpolate(stacked)
+            shape = (3,) + rule.s.shape
+            parts = [(values[:, 3 * k:3 * k + 3].T.reshape(shape),
+                      derivatives[:, 3 * k:3 * k + 3].T.reshape(shape)) for k in range(len(columns))]
+            (r, dr), rest = parts[0], parts[1:]
             v = dv = a = None
             if V is not None:
-                v, dv = self.fem.at_quadrature(V, rule)
+                v, dv = rest.pop(0)
             if A is not None:
-                a, _ = self.fem.at_quadrature(A, rule)
+                a = rest.pop(0)[0]
             states.append(State(r, dr, v, dv, a, t))
         full, reduced = states
         full.reduced = reduced
@@ -99,14 +105,11 @@ class LineSystem:
                 if block is not None:
                     acc[2 + i] = add(acc[2 + i], sign * block)
         residual = np.zeros((self.fem.n_dofs, 3))
-        local = np.zeros(self.fem.element_dofs.shape + (3,))
         for rule, acc in sums.items():
             if self.assembly == "forms":
                 residual += self._forms_vector(acc[0], acc[1], rule)
             else:
-                local += self.fem.local_vector(acc[0], acc[1], self._rule(rule))
-        if self.assembly != "forms":
-            residual = self.fem.scatter(local)
+                residual += self.fem.assemble_vector(acc[0], acc[1], self._rule(rule))
         blocks = {rule: tuple(acc[2:]) for rule, acc in sums.items()} if jacobian else None
         return residual, blocks
 
