@@ -172,19 +172,43 @@ class Integrator:
 
     # --------------------------------------------------------------- step
     def step(self, dt=None):
-        """Advance by dt (default: the current step), halving it on failure; returns the dt taken."""
+        """Advance exactly by dt (default: the current step) [s]; a step whose Newton fails is
+        replaced by two half steps, recursively, down to ``min_dt``. Returns dt."""
         h = float(dt or self.dt)
-        while True:
-            if self.attempt(h):
-                self.steps += 1
-                return h
-            self.rejected += 1
-            h *= 0.5
-            if h < self.min_dt:
-                raise ConvergenceError(
-                    f"{self.name}: Newton did not converge at t = {self.t:.6g} s even with "
-                    f"dt = {2 * h:.3g} s; try a smaller dt, more elements or a softer seabed",
-                    iterations=self.newton_iterations)
+        if self.attempt(h):
+            self.steps += 1
+            return h
+        self.rejected += 1
+        if h / 2 < self.min_dt:
+            raise ConvergenceError(
+                f"{self.name}: Newton did not converge at t = {self.t:.6g} s even with "
+                f"dt = {h:.3g} s; try a smaller dt, more elements or a softer seabed",
+                iterations=self.newton_iterations)
+        self.step(h / 2)
+        self.step(h / 2)
+        return h
+
+    def snapshot(self):
+        """The state needed to undo steps (see ``restore``)."""
+        return (self.t, self.X, self.V, self.A, self.residual_rows, getattr(self, "previous", None))
+
+    def restore(self, snapshot):
+        """Go back to a ``snapshot``."""
+        self.t, self.X, self.V, self.A, self.residual_rows, previous = snapshot
+        if hasattr(self, "previous"):
+            self.previous = previous
+
+    def tension_error(self, X_low):
+        """Estimated local error of the last step as a fraction of the line's largest tension:
+        EA |d(dX)/ds| at the axial quadrature points for dX = X - X_low, the difference between
+        the step and a solution of lower order."""
+        fem = self.fem
+        _, d_diff = fem.at_quadrature(self.X - X_low, fem.reduced)
+        _, dr = fem.at_quadrature(self.X, fem.reduced)
+        EA = self.system.props["EA"][:, None]
+        error = EA * np.linalg.norm(d_diff, axis=0)
+        tension = EA * np.maximum(np.linalg.norm(dr, axis=0) - 1.0, 0.0)
+        return float(error.max() / max(tension.max(), 1e-12 * EA.max()))
 
     def attempt(self, h):
         """Try one step of size h; update the state and return True on success."""
@@ -221,6 +245,11 @@ class BDF2(Integrator):
         super().__init__(*args, **kwargs)
         self.previous = None  # (h, X, V) of the step before
 
+    def error_estimate(self):
+        """Relative tension error of the last step by Milne's device: the Taylor predictor P
+        and BDF2 have local errors h^3 X^(3) / 6 and -2 h^3 X^(3) / 9, so LTE = 4/7 (X - P)."""
+        return self.tension_error(self.X - 4.0 / 7.0 * (self.X - self.prediction))
+
     def coefficients(self, h):
         """(c0, c1, c2) with y' ~ c0 y_{n+1} + c1 y_n + c2 y_{n-1}; backward Euler at the start."""
         if self.previous is None:
@@ -239,9 +268,11 @@ class BDF2(Integrator):
             V = c0 * X + x_hist
             return X, V, c0 * V + v_hist
 
-        X, rows, ok = self.newton(self.predict(h, t1), point, (c0, c0 * c0, 1.0), t1)
+        prediction = self.predict(h, t1)
+        X, rows, ok = self.newton(prediction, point, (c0, c0 * c0, 1.0), t1)
         if not ok:
             return False
+        self.prediction = prediction
         self.previous = (h, self.X, self.V)
         _, self.V, self.A = point(X)
         self.X, self.t, self.residual_rows = X, t1, rows

@@ -17,6 +17,7 @@ import time
 import numpy as np
 
 from .dynamics import INTEGRATORS
+from .errors import InputError
 from .io.vtk import TimeSeriesWriter, polyline_mesh, write_atomic
 from .line import Line
 from .motion import fairlead_motion
@@ -95,16 +96,20 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
     states, static_iterations = start_states(scene)
     integrator_class = INTEGRATORS[solver.integrator]
     options = {"rho_inf": solver.rho_inf} if solver.integrator == "generalized-alpha" else {}
+    if solver.adaptive and solver.integrator != "bdf2":
+        raise InputError("adaptive steps need integrator = \"bdf2\"", key="solver.adaptive")
     integrators = [integrator_class(build_system(scene, line), X0, boundary_path(scene, line),
-                                    dt=dt, tolerance=solver.tolerance, **options)
+                                    dt=dt, tolerance=solver.tolerance,
+                                    reuse_jacobian=solver.reuse_jacobian, **options)
                    for line, X0 in zip(scene.lines, states)]
     frames = TimeSeriesWriter(out_dir, scene.name)
     tracker = _Extremes([line.name for line in scene.lines])
     summary = {"scene": scene.name, "seabed": scene.seabed.describe(), "notes": list(scene.notes),
                "static_newton_iterations": static_iterations, "dt": dt, "duration": duration}
     bar = _progress(progress, duration)
-    every = max(scene.output.every, dt)
+    every = scene.output.every if solver.adaptive else max(scene.output.every, dt)
     next_frame = 0.0
+    step_control = _StepControl(solver, dt)
     status = "completed"
     try:
         with open(os.path.join(out_dir, "tensions.csv"), "w", newline="") as handle:
@@ -121,9 +126,7 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
                     next_frame += every
                 if t >= duration - 1e-9 * dt:
                     break
-                step = min(dt, duration - t)
-                for integ in integrators:
-                    integ.step(step)
+                step = step_control.advance(integrators, min(duration, next_frame) - t)
                 handle.flush()
                 if bar is not None:
                     bar.update(step)
@@ -143,9 +146,46 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
             "wall_time_s": time.perf_counter() - start,
             "steps": sum(s["steps"] for s in stats),
             "newton_iterations": sum(s["newton_iterations"] for s in stats),
-            "integrator": stats, "tension_extremes": tracker.as_dict()})
+            "integrator": stats, "tension_extremes": tracker.as_dict(),
+            "adaptive": {"accepted": step_control.accepted, "rejected": step_control.rejected}
+            if solver.adaptive else None})
         write_atomic(os.path.join(out_dir, "summary.json"), json.dumps(summary, indent=1))
     return summary
+
+
+class _StepControl:
+    """Fixed steps of dt, or (``solver.adaptive``, BDF2) steps chosen from the local error
+    estimate so that the tension error per step stays near ``solver.error_tolerance``
+    (a fraction of the largest tension), never above dt; all lines step together."""
+
+    def __init__(self, solver, dt):
+        self.adaptive = solver.adaptive
+        self.tolerance = solver.error_tolerance
+        self.max_dt = dt
+        self.h = dt / 8 if self.adaptive else dt
+        self.accepted = self.rejected = 0
+
+    def advance(self, integrators, to_stop):
+        """Take one step (retrying smaller ones when adaptive) of at most ``to_stop`` [s]."""
+        while True:
+            h = min(self.h, to_stop) if self.adaptive else min(self.max_dt, to_stop)
+            snapshots = [integ.snapshot() for integ in integrators]
+            first = any(getattr(integ, "previous", True) is None for integ in integrators)
+            for integ in integrators:
+                integ.step(h)
+            if not self.adaptive or first:
+                return h
+            error = max(integ.error_estimate() for integ in integrators)
+            factor = 0.9 * (self.tolerance / error) ** (1 / 3) if error > 0 else 2.0
+            if error <= self.tolerance or h <= integrators[0].min_dt:
+                self.accepted += 1
+                if h >= self.h * (1 - 1e-12):  # not shortened to land on an output time
+                    self.h = min(self.max_dt, h * min(2.0, max(0.5, factor)))
+                return h
+            self.rejected += 1
+            for integ, snap in zip(integrators, snapshots):
+                integ.restore(snap)
+            self.h = h * max(0.2, factor)
 
 
 def _columns(scene):

@@ -75,7 +75,10 @@ class Solver:
     """Solver settings: integrator ("bdf2" | "generalized-alpha"), time step [s], duration [s],
     relative residual tolerance, Newton iteration cap, the assembly path ("kernel" or
     "forms"), the spectral radius at infinite frequency of generalised-alpha, and whether
-    statics fits a mesh vertex to the touchdown point (``cablefem.statics.solve_line``)."""
+    statics fits a mesh vertex to the touchdown point (``cablefem.statics.solve_line``),
+    whether Newton keeps the tangent's LU factors across iterations and steps, and the
+    adaptive step control of BDF2 (dt is then the largest step; error_tolerance is the
+    local tension error per step as a fraction of the largest tension)."""
 
     integrator: str = "bdf2"
     dt: float = 0.01
@@ -85,6 +88,9 @@ class Solver:
     assembly: str = "kernel"
     rho_inf: float = 0.8
     fit_touchdown: bool = True
+    reuse_jacobian: bool = True
+    adaptive: bool = False
+    error_tolerance: float = 3e-4
 
 
 @dataclass(frozen=True)

@@ -216,3 +216,29 @@ def test_run_stopped_early_leaves_valid_outputs(tmp_path, monkeypatch):
     assert summary["completed"] is False and summary["status"] == "interrupted"
     assert summary["steps"] == 30
     assert os.path.isfile(tmp_path / "seabed.vtu")
+
+
+def test_adaptive_steps_follow_their_tolerance(tmp_path):
+    from dataclasses import replace
+
+    from cablefem.post import read_tensions
+    from cablefem.run import run_scene
+    from cablefem.scenes import flume_scene
+
+    def fairlead_tension(out, **solver):
+        scene = flume_scene("flat", "quasi-static", elements=20, duration=4.0)
+        scene.solver = replace(scene.solver, tolerance=1e-9, **solver)
+        scene.output = replace(scene.output, every=0.5)
+        summary = run_scene(scene, str(tmp_path / out), progress=False)
+        data = read_tensions(str(tmp_path / out))
+        frames = np.isin(np.round(data["t"], 9), np.arange(0.0, 4.01, 0.5))
+        return data["fairlead_tension"][frames], summary
+
+    reference, _ = fairlead_tension("ref", dt=0.002)
+    loose, s_loose = fairlead_tension("loose", adaptive=True, dt=0.2, error_tolerance=1e-3)
+    tight, s_tight = fairlead_tension("tight", adaptive=True, dt=0.2, error_tolerance=1e-5)
+    e_loose = np.abs(loose - reference).max() / reference.max()
+    e_tight = np.abs(tight - reference).max() / reference.max()
+    # a hundred times tighter: more (smaller) steps and a smaller error (BDF2: ~ tol^(2/3))
+    assert s_tight["steps"] > 2 * s_loose["steps"]
+    assert e_tight < e_loose / 3, (e_loose, e_tight)
