@@ -271,10 +271,13 @@ def solve_line(line, seabed, contact, environment, fit_touchdown=True, tolerance
         fitted = build(line.split_at(vertex))
         previous_system, previous = system, result
         guess = fitted.fem.interpolate(lambda s: previous_system.fem.evaluate(previous.X, s))
-        result = solve_static(fitted, guess, tolerance=tolerance, max_iterations=max_iterations)
-        system = fitted
-        iterations += result.iterations
-        elapsed += result.wall_time_s
+        start = time.perf_counter()
+        X, its, norm, history, ok = _tension_only(fitted, guess, tolerance, max_iterations)
+        iterations += its
+        elapsed += time.perf_counter() - start
+        if not ok:  # a refinement only: keep the last converged solution
+            break
+        system, result = fitted, StaticResult(X, its, norm, history, "newton")
     result.iterations, result.wall_time_s = iterations, elapsed
     return system, result
 
