@@ -77,10 +77,15 @@ def touchdown(system, X, samples_per_element=16):
 
 
 def report(system, X):
-    """The ``LineReport`` of one line system at state X."""
+    """The ``LineReport`` of one line system at state X. On a plane seabed under the anchor the
+    touchdown is the resting length that the seabed's reaction carries (well conditioned); else
+    the last point of contact (``touchdown``)."""
+    from .statics import anchored_on_plane, resting_length
+
     fairlead, anchor = end_forces(system, X)
+    td = resting_length(system, X) if anchored_on_plane(system.line, system.seabed) else None
     return LineReport(system.line.name, fairlead, anchor, X[: system.fem.n_vertices].copy(),
-                      touchdown(system, X))
+                      td if td is not None else touchdown(system, X))
 
 
 def sample_arc_lengths(system, per_element=None):
