@@ -25,6 +25,10 @@ onto it and the surface continues as the tangent plane there. Derivatives follow
 3x3 system: with J = [a, b, n] (a = e_1 + h dn_1, b = e_2 + h dn_2),
 d(s, t, h)/dp = J^-1, whose rows are (b x n, n x a, a x b) / det J.
 
+``project_warm`` fuses the solve and the evaluation for points still inside
+the triangles of a previous call, from per-triangle rows of ``warm_table``
+(among them a height below which the cubic provably has no nearer root).
+
 Shapes: points (m, 3) [m] at the interface; inside, component-first (3, m)
 arrays gathered from a packed table (30, k) built once by ``triangle_table``
 (contiguous rows make the elementwise arithmetic several times faster).
@@ -272,6 +276,120 @@ def gap(points, table, triangle, s, t):
     normal = d[N0] + s * d[DN1] + t * d[DN2]
     lever = points.T - (d[P0] + s * d[E1] + t * d[E2])
     return dot(lever, normal) / np.sqrt(dot(normal, normal))
+
+
+#: rows of the table ``warm_table`` builds for ``project_warm`` (r, k), with nu the unit face
+#: normal: the seven vectors dotted with q = p - P_0 (g_0, g_1, g_2 of the cubic, then U0 =
+#: (e_2 x nu, nu x e_1) and U1 = (dn_2 x nu, nu x dn_1)), the cubic's k_1, k_2, c_3, then
+#: A1 = U0 . n_0, A2 = U1 . n_0, D = g . nu: at height h, (s, t) = (U0 . q + h (U1 . q - A1
+#: - h A2)) / (D0 + D1 h + D2 h^2), Cramer's rule with nu as the third column. SAFE: a
+#: height below which the cubic has no other root.
+W_DOTTED, W_K1, W_K2, W_C3 = slice(0, 21), 21, 22, 23
+W_A1, W_A2, W_D0, W_D1, W_D2, W_SAFE = slice(24, 26), slice(26, 28), 28, 29, 30, 31
+
+
+def warm_table(table):
+    """The per-triangle rows (32, k) of ``project_warm`` from ``table`` (30, k) of ``triangle_table``.
+
+    SAFE is rigorous: for a point inside the triangle at a root h with |h| <= SAFE, no other
+    real root r has |r| <= |h|. Another root makes c1 + c2 (r + h) + c3 (r^2 + r h + h^2)
+    vanish, which cannot happen while |c1| > 2 |c2| rho + 3 |c3| rho^2 with |h|, |r| <= rho;
+    and inside, |h| <= L (the longest edge) gives |q| <= 2 L, which bounds c1 = g_1 . q - k_1
+    from below and c2 = g_2 . q - k_2 from above. Flat triangles (g_1 = g_2 = 0) have one root.
+    """
+    e1, e2, n0, dn1, dn2 = (table[rows] for rows in (E1, E2, N0, DN1, DN2))
+    g0, g1, g2 = table[G0], table[G1], table[G2]
+    nu = g0 / np.sqrt(dot(g0, g0))
+    u0 = np.vstack([cross(e2, nu), cross(nu, e1)])
+    u1 = np.vstack([cross(dn2, nu), cross(nu, dn1)])
+    a1 = np.vstack([dot(u0[:3], n0), dot(u0[3:], n0)])
+    a2 = np.vstack([dot(u1[:3], n0), dot(u1[3:], n0)])
+    longest = np.sqrt(np.max([dot(e1, e1), dot(e2, e2), dot(e2 - e1, e2 - e1)], axis=0))
+    reach = 2.0 * longest * (1.0 + 1e-6)
+    size1, size2 = np.sqrt(dot(g1, g1)), np.sqrt(dot(g2, g2))
+    c1_min = np.abs(table[K1]) - size1 * reach
+    c2_max = np.abs(table[K2]) + size2 * reach
+    c3 = np.abs(table[C3])
+    with np.errstate(all="ignore"):  # rho = positive root of 3 c3 rho^2 + 2 c2 rho - c1 (inf if flat)
+        rho = c1_min / (c2_max + np.sqrt(c2_max * c2_max + 3.0 * c3 * c1_min))
+    flat = (size1 == 0.0) & (size2 == 0.0) & (c3 == 0.0)
+    safe = np.where(flat, np.inf, np.where(c1_min > 0.0, np.minimum((1.0 - 1e-6) * rho, longest), 0.0))
+    return np.ascontiguousarray(np.vstack([g0, g1, g2, u0, u1, table[K1:C3 + 1], a1, a2,
+                                           dot(g0, nu), dot(g1, nu), dot(g2, nu), safe]))
+
+
+def gather(table, extra, triangle):
+    """The rows ``project_warm`` reads of triangles (m,): ``table`` (30, k) of ``triangle_table``
+    and ``extra`` (32, k) of ``warm_table``, as (18, m) and (32, m) (kept while they do not change)."""
+    return table[:18].take(triangle, axis=1), extra.take(triangle, axis=1)
+
+
+def project_warm(points, gathered, start, derivatives=True):
+    """``evaluate`` of points (m, 3) [m] in the triangles they held at the last call, from
+    its h (m,) [m], or None unless every point is still inside its triangle at its nearest root.
+
+    The path of Newton iterations and time steps, where lines move little between calls:
+    ``_solve`` and ``_evaluate`` fused for the inside case, with the same root (from the last
+    h to _halley's stopping test) and the same inside and nearest-root tests, in about a
+    third of the numpy calls: with the ~100 points of a line the cost is the number of
+    calls, not their size. ``gathered``: ``gather`` of the triangles. Returns s, t, h (m,)
+    and evaluate's five outputs, the closest point and the gradients None unless ``derivatives``.
+    """
+    d, w = gathered  # P0, E1, E2, N0, DN1, DN2 (18, m) and warm_table's rows (32, m)
+    m = len(start)
+    with np.errstate(all="ignore"):
+        x = points.T
+        q = x - d[P0]
+        dotted = np.einsum("vcm,cm->vm", w[W_DOTTED].reshape(7, 3, m), q)  # g.q, then U.q
+        c0, c1, c2, c3 = dotted[0], dotted[1] - w[W_K1], dotted[2] - w[W_K2], w[W_C3]
+        c2x2 = 2.0 * c2
+        # one Halley step from the last h (as _halley: step = f f' / (f'^2 - f f''/2)), then
+        # Newton to _halley's stopping test: the error is cubed, then squared, each time
+        c3h = c3 * start
+        f = ((c3h + c2) * start + c1) * start + c0
+        c3h3 = 3.0 * c3h
+        df = (c3h3 + c2x2) * start + c1
+        h = start - f * df / (df * df - f * (c3h3 + c2))
+        for _ in range(4):
+            c3h = c3 * h
+            step = (((c3h + c2) * h + c1) * h + c0) / ((3.0 * c3h + c2x2) * h + c1)
+            h = h - step
+            magnitude = np.abs(h)
+            if np.abs(step).max() <= 1e-8 * magnitude.min() + 1e-13:  # NaN fails
+                break
+        else:
+            return None
+        if not (magnitude <= w[W_SAFE]).all():  # the other two roots by deflation: one nearer?
+            big_b = c2 + c3 * h
+            big_c = c1 + big_b * h
+            big_q = -0.5 * (big_b + np.copysign(np.sqrt(big_b * big_b - 4.0 * c3 * big_c), big_b))
+            if ((np.abs(big_q / c3) < magnitude) | (np.abs(big_c / big_q) < magnitude)).any():
+                return None
+        st = ((dotted[3:5] + h * (dotted[5:7] - w[W_A1] - h * w[W_A2]))
+              / (w[W_D0] + h * (w[W_D1] + h * w[W_D2])))
+        s, t = st
+        # inside, as _inside (NaN fails)
+        if not (st.min() >= -INSIDE_TOLERANCE and (s + t).max() <= 1.0 + INSIDE_TOLERANCE):
+            return None
+        normal = d[N0] + s * d[DN1] + t * d[DN2]
+        length = np.sqrt(dot(normal, normal))
+        direction = normal / length
+        if not derivatives:  # a residual uses d_G and d_P only
+            return s, t, h, h * length, direction.T, None, None, None
+        # a x b, b x n, n x a in one go, from cyclic views of (a, b, n)
+        vectors = np.concatenate(((d[E1.start:E2.stop] + h * d[DN1.start:DN2.stop]).reshape(2, 3, m),
+                                  normal[None]))
+        first = np.concatenate((vectors, vectors[:, :2]), axis=1)
+        second = first[[1, 2, 0]]
+        crossed = first[:, 1:4] * second[:, 2:5] - first[:, 2:5] * second[:, 1:4]
+        ab = crossed[0]
+        det = dot(ab, normal)
+        ds_dt = crossed[1:] / det  # rows of J^-1: d(s, t)/dp, (2, 3, m)
+        dnormal = (d[DN1.start:DN2.stop].reshape(2, 3, 1, m) * ds_dt[:, None]).sum(axis=0)
+        along = dot(direction[:, None], dnormal)
+        direction_gradient = (dnormal - direction[:, None] * along) / length
+        return (s, t, h, h * length, direction.T, (x - h * normal).T,
+                (length * (ab / det) + h * along).T, np.moveaxis(direction_gradient, 2, 0))
 
 
 #: points per chunk: the temporaries of a chunk stay in cache (1.5x faster at 1e5 points)

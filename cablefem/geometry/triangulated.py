@@ -10,6 +10,12 @@ each point, the triangle whose vertex-normal prism holds it.
 
 Search (no per-node sorted list as in desire2023; vectorised over points):
 
+- Warm: when every point is still inside the triangle it held at the
+  remembered call, at the cubic's nearest root, ``_vertex_normal.project_warm``
+  gives the projection in one fused pass (the path of Newton iterations and
+  time steps; a line has ~100 points, so its cost is the number of numpy
+  calls). ``project(points, derivatives=False)`` leaves out the gradients.
+
 - Start: the triangle each point had at a remembered call with as many
   points that lay nearby (Newton iterations and time steps of one line; up
   to 8 calls are remembered, so lines sharing a seabed keep their own), else
@@ -67,6 +73,7 @@ class TriangulatedSurface(Seabed):
         self._tree = None
         self._tree_xy = None
         self._vertical_table = None
+        self._warm_table = None  # project_warm's rows, built at the first warm start
         self._convex = None
         self._edges = self._edge_tree = None
         self._typical = float(np.median(self._size))
@@ -112,7 +119,13 @@ class TriangulatedSurface(Seabed):
         centroids first.
         """
         n = len(points)
-        current = last[0].copy() if last is not None else nearest(points, 1)[:, 0]
+        if last is None:
+            current = nearest(points, 1)[:, 0]
+        else:  # a point that moved farther than its triangle is large starts afresh
+            current = last[0].copy()
+            moved = np.flatnonzero(~last[3])
+            if len(moved):
+                current[moved] = nearest(points[moved], 1)[:, 0]
         # most points stay in their triangle between calls, near their last h
         first = vn.solve(points, table, current, None if last is None else last[2])
         if (first[3] & first[5]).all():
@@ -196,41 +209,88 @@ class TriangulatedSurface(Seabed):
         Starts from a remembered call with as many points lying nearby (the
         previous Newton iteration or time step of the same line), else cold.
         """
-        points = np.asarray(points, dtype=float)
-        if points.ndim != 2 or points.shape[1] != 3:
-            raise InputError(f"points must have shape (n, 3), got {points.shape}", key="points")
-        state, last = self._recall(points)
+        points = _checked(points)
+        return self._located(points, *self._recall(points))
+
+    def _located(self, points, state, shift):
+        """``locate`` from the remembered call ``state`` (or cold, None), which the points moved
+        from by ``shift`` (n,) [m]."""
+        if state is None:
+            last = None
+        else:
+            if shift is None:  # _recall saw that no point moved far; which moved little?
+                shift = np.abs(points - state[0]).max(axis=1)
+            last = (state[1], state[2], state[3], shift <= self._size[state[1]])
         triangle, s, t, h, beyond = self._locate(points, self._table, self._nearest, last, self._below)
-        others = [kept for kept in self._states if kept is not state]
-        self._states = [(points.copy(), triangle, beyond, h)] + others[:WARM_STATES - 1]
+        self._remember(state, points, triangle, beyond, h)
         return triangle, s, t, h
+
+    def _remember(self, state, points, triangle, beyond, h, gathered=None):
+        """Keep this call (replacing the remembered ``state`` it started from) for the next ones,
+        with the triangles' rows the fused path read (``vn.gather``), if it did."""
+        others = [kept for kept in self._states if kept is not state]
+        self._states = [(points.copy(), triangle, beyond, h, gathered)] + others[:WARM_STATES - 1]
 
     def reset(self):
         """Forget the remembered calls: the next projection starts cold (as the first one does)."""
         self._states = []
 
     def _recall(self, points):
-        """The remembered call (points, triangle, unheld, h) whose points (n, 3) [m] lie
-        nearest to these, if on average within a typical triangle size, and the start it gives."""
-        chosen, shift = None, np.inf
-        for state in self._states:
-            if len(state[0]) == len(points):
-                moved = np.abs(points - state[0]).max(axis=1)
-                if moved.mean() < shift:
-                    chosen, shift, distance = state, moved.mean(), moved
-        if chosen is None or shift > self._typical:
+        """The remembered call (points, triangle, unheld, h) whose points lie nearest to these
+        (n, 3) [m], if on average within a typical triangle size, and how far each point moved
+        from it (n,) [m] (largest coordinate change), None when no point moved farther than
+        a typical triangle size; (None, None) if there is no such call."""
+        same = [state for state in self._states if len(state[0]) == len(points)]
+        if not same:
             return None, None
-        return chosen, (chosen[1], chosen[2], chosen[3], distance <= self._size[chosen[1]])
+        # the usual case, one line moving a little: no per-point distances needed
+        largest, nearest = min((np.abs(points - state[0]).max(), k) for k, state in enumerate(same))
+        if largest <= self._typical:
+            return same[nearest], None
+        chosen, shift = None, np.inf
+        for state in same:
+            moved = np.abs(points - state[0]).max(axis=1)
+            mean = moved.sum() / len(moved)
+            if mean < shift:
+                chosen, shift, distance = state, mean, moved
+        if shift > self._typical:
+            return None, None
+        return chosen, distance
 
-    def project(self, points):
-        points = np.asarray(points, dtype=float)
-        triangle, s, t, h = self.locate(points)
+    def project(self, points, derivatives=True):
+        """Projection of points (n, 3) [m] (``Seabed.project``); without ``derivatives`` its
+        closest point and gradients may be None (a residual needs only d_G and d_P)."""
+        points = _checked(points)
+        state, shift = self._recall(points)
+        warm = self._warm(points, state, derivatives)
+        if warm is not None:
+            return Projection(*warm[3:])
+        triangle, s, t, h = self._located(points, state, shift)
         return Projection(*vn.evaluate(points, self._table, triangle, s, t, h))
 
     def gap_only(self, points):
-        points = np.asarray(points, dtype=float)
-        triangle, s, t, _ = self.locate(points)
+        points = _checked(points)
+        state, shift = self._recall(points)
+        warm = self._warm(points, state, False)
+        if warm is not None:
+            return warm[3]
+        triangle, s, t, _ = self._located(points, state, shift)
         return vn.gap(points, self._table, triangle, s, t)
+
+    def _warm(self, points, state, derivatives):
+        """``vn.project_warm`` of points (n, 3) [m] from the remembered call ``state``, kept as
+        the next start when every point is still in its triangle; None otherwise."""
+        if state is None:
+            return None
+        gathered = state[4]
+        if gathered is None:  # the triangles changed since the fused path last read them
+            if self._warm_table is None:
+                self._warm_table = vn.warm_table(self._table)
+            gathered = vn.gather(self._table, self._warm_table, state[1])
+        warm = vn.project_warm(points, gathered, state[3], derivatives)
+        if warm is not None:
+            self._remember(state, points, state[1], np.zeros(len(points), dtype=bool), warm[2], gathered)
+        return warm
 
     def _below(self, points, start=None):
         """Triangle (n,) below points (n, 3) [m] in plan, or the nearest one beyond the mesh's edge.
@@ -304,3 +364,10 @@ class TriangulatedSurface(Seabed):
                 f"x [{low[0]:g}, {high[0]:g}] y [{low[1]:g}, {high[1]:g}] z [{low[2]:g}, {high[2]:g}] m, "
                 "vertex-normal projection")
 
+
+def _checked(points):
+    """Points as a float array (n, 3) [m], or an InputError."""
+    points = np.asarray(points, dtype=float)
+    if points.ndim != 2 or points.shape[1] != 3:
+        raise InputError(f"points must have shape (n, 3), got {points.shape}", key="points")
+    return points

@@ -16,6 +16,10 @@ Mapping (each conversion checked against the MoorDyn 2.7 library, docs/scene.md)
   coefficient): |F| = mu FricDamp |v| per node until it exceeds StatDynFricScale mu |F_n|,
   then mu |F_n|; v_threshold is the velocity where that happens for a node of the
   first line's anchor segment resting on the seabed (FricDamp is kept as well).
+
+Seabed (DESIGN.md "Model only what a scene needs"): a SeafloorFile grid that is
+planar is replaced by its plane (``choose_seabed``, shared with the TOML reader),
+and the note says which model was chosen.
 """
 
 import math
@@ -24,7 +28,7 @@ import os
 import numpy as np
 
 from ..errors import InputError
-from ..geometry import Horizontal
+from ..geometry import Horizontal, Plane, simplify as simplest_model
 from ..line import Line, LineType, Segment
 from ..scene import Contact, Environment, Friction, Scene, Solver
 from . import validate as v
@@ -301,8 +305,46 @@ def _chains(lines, points):
     return chains
 
 
-def read_moordyn(path):
-    """The Scene of a MoorDyn v2 input file: lines anchor first, flat or gridded seabed, fixed fairleads."""
+def choose_seabed(seabed, lines, simplify=True):
+    """The seabed model a scene with ``lines`` uses, and one note (str) saying which and why.
+
+    A plane is kept as given. With ``simplify``, a grid or mesh that is
+    level or planar within 1e-9 of its extent becomes that Horizontal or Plane
+    (``cablefem.geometry.simplify``; point-to-plane projection), anything else
+    is kept (its general projection). A planar, sloping grid stays a grid when
+    an anchor or fairlead lies outside it in plan: there the grid is clamped
+    flat while its plane would go on sloping. ``simplify=False`` keeps the
+    model as read, untested (cost studies).
+    """
+    if isinstance(seabed, Plane):
+        return seabed, f"seabed: {seabed.describe()}"
+    if not simplify:
+        return seabed, (f"seabed: {seabed.describe()}, kept as read (simplify = false: "
+                        "not tested for flatness, general projection)")
+    said = []
+    chosen = simplest_model(seabed, notes=said)
+    note = said[-1] if said else f"seabed: kept {seabed.kind}"
+    bounds = getattr(seabed, "bounds", None)
+    if chosen is not seabed and not isinstance(chosen, Horizontal) and bounds is not None:
+        (x0, x1), (y0, y1) = bounds
+        ends = np.array([point for line in lines for point in (line.anchor, line.fairlead)])
+        slack = 1e-9 * max(x1 - x0, y1 - y0)
+        outside = ((ends[:, 0] < x0 - slack) | (ends[:, 0] > x1 + slack)
+                   | (ends[:, 1] < y0 - slack) | (ends[:, 1] > y1 + slack))
+        if outside.any():
+            return seabed, (f"seabed: kept {seabed.describe()}: it is planar ({chosen.describe()}), "
+                            "but a line end lies outside it in plan, where the grid is clamped flat "
+                            "and the plane would go on sloping")
+    if chosen is seabed:
+        return seabed, f"{note}: using {seabed.describe()}"
+    return chosen, f"{note} (point-to-plane projection)"
+
+
+def read_moordyn(path, simplify=True):
+    """The Scene of a MoorDyn v2 input file: lines anchor first, flat or gridded seabed, fixed fairleads.
+
+    ``simplify``: replace a planar SeafloorFile grid by its plane (``choose_seabed``).
+    """
     path = os.path.abspath(path)
     try:
         with open(path, encoding="utf-8", errors="strict") as handle:
@@ -310,12 +352,12 @@ def read_moordyn(path):
     except UnicodeDecodeError:
         raise InputError("not a MoorDyn input file (not text)", file=path) from None
     try:
-        return _build(path, text)
+        return _build(path, text, simplify)
     except InputError as error:
         raise error.within(file=path) from None
 
 
-def _build(path, text):
+def _build(path, text, simplify=True):
     """The Scene of MoorDyn file text (errors without the file name; read_moordyn adds it)."""
     notes = []
     found = parse_sections(split_sections(text))
@@ -350,9 +392,10 @@ def _build(path, text):
     else:
         raise InputError("missing: needed for the seabed unless SeafloorFile is given", key="OPTIONS.WtrDpth")
     contact = Contact(stiffness=get("kbot"), damping=get("cbot"))
+    seabed, seabed_note = choose_seabed(seabed, lines, simplify)
     friction = _friction(get, lines[0], environment, notes)
     solver = Solver(duration=options["tmax"]) if "tmax" in options else Solver()
-    notes += [f"seabed: {seabed.describe()}", NO_MOTION_NOTE]
+    notes += [seabed_note, NO_MOTION_NOTE]
     return Scene(name=os.path.splitext(os.path.basename(path))[0], lines=lines, seabed=seabed,
                  contact=contact, environment=environment, friction=friction, solver=solver,
                  source=path, notes=notes, moordyn_options=raw_options)

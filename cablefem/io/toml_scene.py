@@ -5,7 +5,9 @@ line naming the key path (``lines[0].segments[1].length``) and the reason;
 defaults come from the dataclasses of ``cablefem.scene``. A ``[moordyn]``
 table takes lines, points, line types and options from a MoorDyn v2 file;
 keys written in the TOML then override, one key at a time, what the MoorDyn
-file gave (``read_toml_scene`` states the rule).
+file gave (``read_toml_scene`` states the rule). A grid, mesh or points seabed
+that is planar becomes its plane unless ``[seabed] simplify = false``
+(``moordyn_input.choose_seabed``); ``scene.notes`` says which model was chosen.
 """
 
 import math
@@ -25,7 +27,7 @@ from ..geometry import Horizontal, Plane
 from ..line import Line, LineType, Segment
 from ..scene import INTEGRATORS, Contact, Environment, Friction, Motion, Output, Scene, Solver
 from . import validate as v
-from .moordyn_input import NO_MOTION_NOTE, read_moordyn
+from .moordyn_input import NO_MOTION_NOTE, choose_seabed, read_moordyn
 
 TOP_LEVEL_KEYS = ("name", "environment", "line_types", "lines", "seabed", "friction",
                   "motion", "solver", "output", "moordyn")
@@ -98,13 +100,14 @@ def read_toml_scene(path, data=None):
         lines = _lines(data["lines"], _line_types(data["line_types"]))
     environment = replace(base.environment if base else Environment(),
                           **_section(data, "environment", ENVIRONMENT_KEYS))
-    seabed, contact = _seabed(data.get("seabed", {}), folder, base)
+    seabed, contact, simplify = _seabed(data.get("seabed", {}), folder, base)
+    seabed, seabed_note = choose_seabed(seabed, lines, simplify)
     friction = replace(base.friction if base else Friction(),
                        **_section(data, "friction", FRICTION_KEYS))
     motion = _motion(data["motion"], folder) if "motion" in data else Motion()
     solver = replace(base.solver if base else Solver(), **_section(data, "solver", SOLVER_KEYS))
     output = replace(Output(), **_section(data, "output", OUTPUT_KEYS))
-    notes.append(f"seabed: {seabed.describe()}")
+    notes.append(seabed_note)
     return Scene(name=name, lines=lines, seabed=seabed, contact=contact, environment=environment,
                  friction=friction, motion=motion, solver=solver, output=output, source=path,
                  notes=notes, moordyn_options=dict(base.moordyn_options) if base else {})
@@ -125,7 +128,7 @@ def _moordyn_base(data, folder):
                              key=key)
     values = v.pick(v.table(data["moordyn"], "moordyn"), "moordyn", MOORDYN_KEYS, required=("file",))
     file = v.existing_file(values["file"], "moordyn.file", folder)
-    base = read_moordyn(file)
+    base = read_moordyn(file, simplify=False)  # the TOML's [seabed] simplify decides
     lines = base.lines
     if "elements" in values:
         lines = [line.with_elements(values["elements"]) for line in lines]
@@ -177,7 +180,8 @@ def _lines(raw, types):
 
 
 def _seabed(raw, folder, base):
-    """(seabed, Contact) from [seabed]; without ``kind`` the MoorDyn base's seabed is kept."""
+    """(seabed as read, Contact, simplify) from [seabed]; without ``kind`` the MoorDyn base's
+    seabed is kept."""
     raw = v.table(raw, "seabed")
     if "kind" not in raw and base is None:
         raise InputError("missing required key", key="seabed.kind")
@@ -188,15 +192,16 @@ def _seabed(raw, folder, base):
         for key in keys:
             elsewhere.setdefault(key, f"does not apply to seabed kind '{kind}'" if kind else
                                  "needs seabed.kind (without it the MoorDyn file's seabed is used)")
-    converters = dict(CONTACT_KEYS, kind=v.text)
+    converters = dict(CONTACT_KEYS, kind=v.text, simplify=_boolean)
     converters.update({key: _SHAPE_CONVERTERS[key] for key in shape_keys})
     values = v.pick(raw, "seabed", converters, elsewhere=elsewhere)
     contact = replace(base.contact if base else Contact(),
                       **{key: values[key] for key in CONTACT_KEYS if key in values})
     if "damping_ratio" in values and "damping" not in values:
         contact = replace(contact, damping=None)  # the ratio the user wrote wins over MoorDyn's cBot
+    simplify = values.get("simplify", True)
     if kind is None:
-        return base.seabed, contact
+        return base.seabed, contact, simplify
     try:
         if kind == "horizontal":
             v.check_keys(values, converters, "seabed", required=("depth",))
@@ -210,7 +215,14 @@ def _seabed(raw, folder, base):
     except InputError as error:
         raise (error if error.file or (error.key or "").startswith("seabed") else
                error.within(prefix="seabed")) from None
-    return seabed, contact
+    return seabed, contact, simplify
+
+
+def _boolean(value, key):
+    """A TOML boolean (true / false); anything else is refused."""
+    if not isinstance(value, bool):
+        raise InputError(f"expected true or false, got {v.describe_type(value)}", key=key)
+    return value
 
 
 def _plane(values):
