@@ -31,7 +31,9 @@ class Integrator:
 
     system: a ``LineSystem``; X0, V0: (N, 3) initial state [m, m/s]; ``boundary(t)`` gives
     the fairlead's position, velocity and acceleration (3,) at time t; dt [s]; tolerance:
-    relative residual or relative increment, as in statics.
+    relative residual or relative increment, as in statics. ``compiled`` evaluates steps with
+    ``cablefem.fused`` when the system's loads allow it (the same equations, compiled);
+    ``newton`` is "full", "modified" (LU factors kept across iterations and steps) or "auto".
     """
 
     name = "integrator"
@@ -40,7 +42,7 @@ class Integrator:
     CONTRACTION = 0.3
 
     def __init__(self, system, X0, boundary, V0=None, t0=0.0, dt=0.01, tolerance=1e-8,
-                 max_iterations=12, lumped=False, min_dt=None, reuse_jacobian=True):
+                 max_iterations=12, lumped=False, min_dt=None, newton="auto", compiled=True):
         self.system = system
         fem = system.fem
         self.fem = fem
@@ -65,8 +67,17 @@ class Integrator:
         self.nfev = self.njev = self.nlu = 0
         self.newton_iterations = self.steps = self.rejected = 0
         self.residual_rows = None  # full residual M A + G at the current state, (N, 3)
-        self.reuse_jacobian = reuse_jacobian
         self._lu, self._lu_factors = None, None
+        self.fused = None
+        if compiled and not lumped:
+            from .fused import FusedEvaluator
+
+            self.fused = FusedEvaluator.for_system(system, system.props["mass"])
+        # a compiled tangent costs about a residual and its banded LU a few microseconds, so full
+        # Newton (fewer iterations) wins; on the numpy path kept factors save more than they cost
+        if newton not in ("auto", "full", "modified"):
+            raise ValueError(f"newton must be auto, full or modified, got {newton!r}")
+        self.reuse_jacobian = newton == "modified" or (newton == "auto" and self.fused is None)
         # positions converge when the force their error makes, EA / h * dx, is below the
         # tolerance times the weight of an element: dx <= tol w h^2 / EA (floored at round-off)
         h = float(np.min(np.diff(fem.mesh.p[0])))
@@ -128,23 +139,20 @@ class Integrator:
         previous = None
         for _ in range(self.max_iterations):
             X, V, A = point(X1)
-            residual, blocks = self.evaluate(X, V, A, t_eval, v_x, a_x, jacobian=fresh)
-            rows = residual + self.inertia(A)
+            rows, tangent = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, fresh)
             norm = np.linalg.norm(rows[free]) / self.scale
             if not np.isfinite(norm):
                 break
             if norm <= self.tolerance and previous is not None:
                 return X1, rows, True
             if fresh:
-                K = g_x * (self.system.matrix(blocks) + a_x * self.M_free)
                 self.njev += 1
-                try:
-                    self._lu = spla.splu(K.tocsc())
-                except RuntimeError:
+                self._lu = self.factorize(tangent, g_x, a_x)
+                if self._lu is None:
                     break
                 self.nlu += 1
                 self._lu_factors = factors
-            dX = self._lu.solve(-rows[free].ravel()).reshape(-1, 3)
+            dX = self.solve(self._lu, rows)
             if not np.all(np.isfinite(dX)):
                 break
             X1 = X1.copy()
@@ -155,8 +163,8 @@ class Integrator:
             if (fresh and size <= self.increment_tolerance) or (
                     rho is not None and rho < 1 and size * rho / (1 - rho) <= self.increment_tolerance):
                 X, V, A = point(X1)
-                residual, _ = self.evaluate(X, V, A, t_eval, v_x, a_x, jacobian=False)
-                return X1, residual + self.inertia(A), True
+                rows, _ = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, False)
+                return X1, rows, True
             fresh = not self.reuse_jacobian or (rho is not None and rho > self.CONTRACTION)
             previous = size
         if self.reuse_jacobian and not fresh:
@@ -164,6 +172,30 @@ class Integrator:
             return self.newton(X1, point, factors, t_eval)
         self._lu = None
         return X1, rows, False
+
+    def rows_and_tangent(self, X, V, A, t, v_x, a_x, jacobian):
+        """Rows M A + G (N, 3) at the evaluation point and, with ``jacobian``, the tangent of the
+        loads and mass in the representation ``factorize`` takes."""
+        if self.fused is not None:
+            self.nfev += 1
+            return self.fused.evaluate(X, V, A, v_x, a_x, jacobian)
+        residual, blocks = self.evaluate(X, V, A, t, v_x, a_x, jacobian)
+        return residual + self.inertia(A), blocks
+
+    def factorize(self, tangent, g_x, a_x):
+        """LU factors of g_x (K + a_x M), or None when singular."""
+        if self.fused is not None:
+            return self.fused.factorize(tangent, g_x)
+        try:
+            return spla.splu((g_x * (self.system.matrix(tangent) + a_x * self.M_free)).tocsc())
+        except RuntimeError:
+            return None
+
+    def solve(self, factors, rows):
+        """Newton increment (N_free, 3) of the free DOFs for residual rows (N, 3)."""
+        if self.fused is not None:
+            return self.fused.solve(factors, rows)
+        return factors.solve(-rows[self.fem.free_dofs].ravel()).reshape(-1, 3)
 
     def evaluate(self, X, V, A, t, v_x, a_x, jacobian=True):
         """Load residual rows and tangent blocks at the step's evaluation point."""

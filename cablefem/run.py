@@ -100,7 +100,7 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
         raise InputError("adaptive steps need integrator = \"bdf2\"", key="solver.adaptive")
     integrators = [integrator_class(build_system(scene, line), X0, boundary_path(scene, line),
                                     dt=dt, tolerance=solver.tolerance,
-                                    reuse_jacobian=solver.reuse_jacobian, **options)
+                                    newton=solver.newton, **options)
                    for line, X0 in zip(scene.lines, states)]
     frames = TimeSeriesWriter(out_dir, scene.name)
     tracker = _Extremes([line.name for line in scene.lines])

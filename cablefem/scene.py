@@ -76,7 +76,8 @@ class Solver:
     relative residual tolerance, Newton iteration cap, the assembly path ("kernel" or
     "forms"), the spectral radius at infinite frequency of generalised-alpha, and whether
     statics fits a mesh vertex to the touchdown point (``cablefem.statics.solve_line``),
-    whether Newton keeps the tangent's LU factors across iterations and steps, and the
+    Newton in dynamics ("full", "modified": the tangent's LU factors kept across iterations
+    and steps, or "auto": full with the compiled kernel, modified without), and the
     adaptive step control of BDF2 (dt is then the largest step; error_tolerance is the
     local tension error per step as a fraction of the largest tension)."""
 
@@ -88,7 +89,7 @@ class Solver:
     assembly: str = "kernel"
     rho_inf: float = 0.8
     fit_touchdown: bool = True
-    reuse_jacobian: bool = True
+    newton: str = "auto"
     adaptive: bool = False
     error_tolerance: float = 3e-4
 

@@ -43,6 +43,7 @@ MOTION_REQUIRED = {"fixed": (), "harmonic": ("amplitude", "period"),
                    "circular": ("radius", "period"), "table": ("file",)}
 MOTION_PLANES = ("xy", "xz", "yz", "yx", "zx", "zy")  # sin along the first axis, cos along the second
 ASSEMBLY_PATHS = ("kernel", "forms")
+NEWTON_MODES = ("auto", "full", "modified")
 
 ENVIRONMENT_KEYS = {"water_density": v.positive, "gravity": v.positive, "current": v.vector3}
 LINE_TYPE_KEYS = {"diameter": v.positive, "mass": v.positive, "EA": v.positive,
@@ -58,7 +59,9 @@ FRICTION_KEYS = {"model": v.choice(FRICTION_MODELS), "mu": v.non_negative,
                  "static_scale": v.positive, "v_threshold": v.positive,
                  "saturation_damping": v.positive}
 SOLVER_KEYS = {"integrator": v.choice(INTEGRATORS), "dt": v.positive, "duration": v.positive,
-               "tolerance": v.positive, "max_iterations": v.whole, "assembly": v.choice(ASSEMBLY_PATHS)}
+               "tolerance": v.positive, "max_iterations": v.whole, "assembly": v.choice(ASSEMBLY_PATHS),
+               "rho_inf": v.fraction, "fit_touchdown": v.boolean, "newton": v.choice(NEWTON_MODES),
+               "adaptive": v.boolean, "error_tolerance": v.positive}
 OUTPUT_KEYS = {"dir": v.text, "every": v.positive}
 MOORDYN_KEYS = {"file": v.text, "order": v.whole, "elements": v.whole}
 
@@ -192,7 +195,7 @@ def _seabed(raw, folder, base):
         for key in keys:
             elsewhere.setdefault(key, f"does not apply to seabed kind '{kind}'" if kind else
                                  "needs seabed.kind (without it the MoorDyn file's seabed is used)")
-    converters = dict(CONTACT_KEYS, kind=v.text, simplify=_boolean)
+    converters = dict(CONTACT_KEYS, kind=v.text, simplify=v.boolean)
     converters.update({key: _SHAPE_CONVERTERS[key] for key in shape_keys})
     values = v.pick(raw, "seabed", converters, elsewhere=elsewhere)
     contact = replace(base.contact if base else Contact(),
@@ -216,13 +219,6 @@ def _seabed(raw, folder, base):
         raise (error if error.file or (error.key or "").startswith("seabed") else
                error.within(prefix="seabed")) from None
     return seabed, contact, simplify
-
-
-def _boolean(value, key):
-    """A TOML boolean (true / false); anything else is refused."""
-    if not isinstance(value, bool):
-        raise InputError(f"expected true or false, got {v.describe_type(value)}", key=key)
-    return value
 
 
 def _plane(values):

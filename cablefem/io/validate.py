@@ -93,6 +93,21 @@ def non_negative(value, key):
     return value
 
 
+def fraction(value, key):
+    """A finite float in [0, 1]."""
+    value = number(value, key)
+    if not 0.0 <= value <= 1.0:
+        raise InputError(f"must be between 0 and 1, got {value:g}", key=key)
+    return value
+
+
+def boolean(value, key):
+    """A TOML boolean (true / false); anything else is refused."""
+    if not isinstance(value, bool):
+        raise InputError(f"expected true or false, got {describe_type(value)}", key=key)
+    return value
+
+
 def whole(value, key):
     """An integer >= 1 (element counts, element order, iteration caps)."""
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
