@@ -343,7 +343,7 @@ def dynamic_run(seabed, duration, dt=0.01, kind="flat", count_projection=False, 
     line = scene.lines[0]
     integrator = INTEGRATORS["bdf2"](build_system(scene, line), X0, boundary_path(scene, line),
                                      dt=dt, tolerance=scene.solver.tolerance,
-                                     reuse_jacobian=modified_newton)
+                                     newton="modified" if modified_newton else "full")
     spent = [0.0, 0]
     if count_projection:  # an instance attribute shadows the method for this run only
         project = seabed.project
