@@ -28,6 +28,9 @@ d(s, t, h)/dp = J^-1, whose rows are (b x n, n x a, a x b) / det J.
 ``project_warm`` fuses the solve and the evaluation for points still inside
 the triangles of a previous call, from per-triangle rows of ``warm_table``
 (among them a height below which the cubic provably has no nearer root).
+``_vertex_normal_jit`` is the same algebra per point, compiled, which
+``TriangulatedSurface`` uses by default; this module is its reference and
+its fallback.
 
 Shapes: points (m, 3) [m] at the interface; inside, component-first (3, m)
 arrays gathered from a packed table (30, k) built once by ``triangle_table``

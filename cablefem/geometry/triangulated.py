@@ -10,11 +10,19 @@ each point, the triangle whose vertex-normal prism holds it.
 
 Search (no per-node sorted list as in desire2023; vectorised over points):
 
-- Warm: when every point is still inside the triangle it held at the
-  remembered call, at the cubic's nearest root, ``_vertex_normal.project_warm``
-  gives the projection in one fused pass (the path of Newton iterations and
-  time steps; a line has ~100 points, so its cost is the number of numpy
-  calls). ``project(points, derivatives=False)`` leaves out the gradients.
+- Compiled (the default): ``_vertex_normal_jit.project`` does, per point in
+  one numba loop, the start, the walk below and the evaluation, for every
+  point the walk places (a prism holds it at its nearest root); the rest
+  (cold starts the kd-tree seeds, far jumps, lost walks, far roots, points
+  beyond the mesh's edge) take the numpy search below from the same start,
+  and the kernel evaluates them. Same answer as the numpy path to round-off
+  (``compiled = False``; ``tests/test_projection_compiled.py``), ~15 us for
+  the 80 points of a line instead of ~120 us: a line has ~100 points, so
+  the numpy path's cost is its number of array calls, not their size.
+- Warm (numpy path): when every point is still inside the triangle it held
+  at the remembered call, at the cubic's nearest root,
+  ``_vertex_normal.project_warm`` gives the projection in one fused pass.
+  ``project(points, derivatives=False)`` leaves out the gradients.
 
 - Start: the triangle each point had at a remembered call with as many
   points that lay nearby (Newton iterations and time steps of one line; up
@@ -42,7 +50,7 @@ import numpy as np
 from scipy.spatial import ConvexHull, cKDTree
 
 from ..errors import InputError
-from . import _mesh, _vertex_normal as vn
+from . import _mesh, _vertex_normal as vn, _vertex_normal_jit as jit
 from .base import Projection, Seabed
 
 #: walk steps from the start triangle, and nearest centroids tried after them
@@ -59,6 +67,8 @@ class TriangulatedSurface(Seabed):
     """Seabed given by vertices (m, 3) [m] and triangles (k, 3) of vertex indices, any winding."""
 
     kind = "mesh"
+    #: project with the compiled walk (``_vertex_normal_jit``); False: the numpy search alone
+    compiled = True
 
     def __init__(self, vertices, triangles):
         vertices, triangles = _mesh.checked_arrays(vertices, triangles)
@@ -67,6 +77,8 @@ class TriangulatedSurface(Seabed):
         self.neighbours = _mesh.neighbours(self.triangles, len(vertices))
         self.vertex_normals = _mesh.vertex_normals(vertices, self.triangles, self.face_normals)
         self._table = vn.triangle_table(vertices, self.triangles, self.vertex_normals)
+        self._rows = np.ascontiguousarray(self._table.T)  # one triangle's data contiguous, for jit
+        self._across = np.ascontiguousarray(self.neighbours, dtype=np.int64)
         corners = vertices[self.triangles]
         self._centroids = corners.mean(axis=1)
         self._size = np.linalg.norm(corners - np.roll(corners, 1, axis=1), axis=2).max(axis=1)
@@ -74,11 +86,13 @@ class TriangulatedSurface(Seabed):
         self._tree_xy = None
         self._vertical_table = None
         self._warm_table = None  # project_warm's rows, built at the first warm start
+        self._safe = None  # their SAFE row, for the compiled path
         self._convex = None
         self._edges = self._edge_tree = None
         self._typical = float(np.median(self._size))
-        # recent calls (points, triangle, held by no prism, h): a Newton iteration or time step
-        # starts where the previous one of the same line ended (several lines may share a seabed)
+        # recent calls (points, triangle, held by no prism, h, the rows project_warm gathered,
+        # the points component-first): a Newton iteration or time step starts where the previous
+        # one of the same line ended (several lines may share a seabed)
         self._states = []
 
     @property
@@ -209,6 +223,9 @@ class TriangulatedSurface(Seabed):
         Starts from a remembered call with as many points lying nearby (the
         previous Newton iteration or time step of the same line), else cold.
         """
+        if self.compiled:  # the compiled walk, the numpy search where it does not place a point
+            triangle, sth, _ = self._compiled(points, jit.GAP_ONLY)
+            return triangle, sth[0].copy(), sth[1].copy(), sth[2].copy()
         points = _checked(points)
         return self._located(points, *self._recall(points))
 
@@ -225,11 +242,17 @@ class TriangulatedSurface(Seabed):
         self._remember(state, points, triangle, beyond, h)
         return triangle, s, t, h
 
-    def _remember(self, state, points, triangle, beyond, h, gathered=None):
+    def _remember(self, state, points, triangle, beyond, h, gathered=None, xyz=None):
         """Keep this call (replacing the remembered ``state`` it started from) for the next ones,
-        with the triangles' rows the fused path read (``vn.gather``), if it did."""
+        with the triangles' rows the fused path read (``vn.gather``), if it did; ``xyz``: the
+        points' own component-first copy (3, n) the compiled path made (then ``points`` is its
+        transpose), else the points are copied."""
+        call = (points.copy() if xyz is None else points, triangle, beyond, h, gathered, xyz)
+        if self._states and self._states[0] is state:  # the usual case: the same line again
+            self._states[0] = call
+            return
         others = [kept for kept in self._states if kept is not state]
-        self._states = [(points.copy(), triangle, beyond, h, gathered)] + others[:WARM_STATES - 1]
+        self._states = [call] + others[:WARM_STATES - 1]
 
     def reset(self):
         """Forget the remembered calls: the next projection starts cold (as the first one does)."""
@@ -260,6 +283,12 @@ class TriangulatedSurface(Seabed):
     def project(self, points, derivatives=True):
         """Projection of points (n, 3) [m] (``Seabed.project``); without ``derivatives`` its
         closest point and gradients may be None (a residual needs only d_G and d_P)."""
+        if self.compiled:
+            out = self._compiled(points, jit.EVERYTHING if derivatives else jit.GAP_AND_DIRECTION)[2]
+            if not derivatives:
+                return Projection(out[jit.GAP], out[jit.DIRECTION].T, None, None, None)
+            return Projection(out[jit.GAP], out[jit.DIRECTION].T, out[jit.CLOSEST].T, out[jit.GAP_GRADIENT].T,
+                              out[jit.DIRECTION_GRADIENT].reshape(3, 3, -1).transpose(2, 0, 1))
         points = _checked(points)
         state, shift = self._recall(points)
         warm = self._warm(points, state, derivatives)
@@ -269,6 +298,8 @@ class TriangulatedSurface(Seabed):
         return Projection(*vn.evaluate(points, self._table, triangle, s, t, h))
 
     def gap_only(self, points):
+        if self.compiled:
+            return self._compiled(points, jit.GAP_ONLY)[2][jit.GAP]
         points = _checked(points)
         state, shift = self._recall(points)
         warm = self._warm(points, state, False)
@@ -277,6 +308,47 @@ class TriangulatedSurface(Seabed):
         triangle, s, t, _ = self._located(points, state, shift)
         return vn.gap(points, self._table, triangle, s, t)
 
+    def _compiled(self, points, mode):
+        """Triangle (n,), (s, t, h) (3, n) and the packed outputs (19, n) of ``jit.project``
+        (``mode``: what it computes) for points (n, 3) [m], from the remembered call with as
+        many points (the nearest, if several) or cold; the points the compiled walk does not
+        place take the numpy search (``_locate``, from the same start)."""
+        xyz = _checked(points).T.copy()  # component-first, and kept as the next call's start
+        points = xyz.T
+        n = len(points)
+        same = [state for state in self._states if len(state[0]) == n]
+        triangle, sth, out = np.empty(n, dtype=np.int64), np.empty((3, n)), np.empty((jit.OUTPUTS, n))
+        if self._safe is None:
+            self._safe = np.ascontiguousarray(self._warm_tables()[vn.W_SAFE])
+        lost = -1
+        if len(same) == 1:  # one line on this seabed: the kernel sees whether it moved far
+            state = same[0]
+            origin, start, unheld, start_h = _component_first(state), state[1], state[2], state[3]
+            lost = jit.project(xyz, origin, start, start_h, unheld, self._rows, self._across, self._safe,
+                               self._size, self._typical, WALK_STEPS, True, mode, triangle, sth, out)
+        if lost < 0:  # several lines, or one that moved far: start as _located does
+            state = self._recall(points)[0]
+            if state is None:  # cold: from the nearest centroids, no h to start from
+                origin, start = xyz, self._nearest(points, 1)[:, 0]
+                unheld, start_h = np.zeros(n, dtype=bool), np.full(n, np.nan)
+            else:
+                origin, start, unheld, start_h = _component_first(state), state[1], state[2], state[3]
+            lost = jit.project(xyz, origin, start, start_h, unheld, self._rows, self._across, self._safe,
+                               self._size, np.inf, WALK_STEPS, True, mode, triangle, sth, out)
+        beyond = np.zeros(n, dtype=bool)
+        if lost:  # the numpy search from the same start, for the points the walk left
+            rows = np.flatnonzero(triangle < 0)
+            last = None
+            if state is not None:
+                moved = np.abs(points[rows] - state[0][rows]).max(axis=1)
+                last = (state[1][rows], state[2][rows], state[3][rows], moved <= self._size[state[1][rows]])
+            found = self._locate(points[rows], self._table, self._nearest, last, self._below)
+            triangle[rows], sth[0, rows], sth[1, rows], sth[2, rows], beyond[rows] = found
+            jit.project(xyz, origin, start, start_h, unheld, self._rows, self._across, self._safe,
+                        self._size, np.inf, WALK_STEPS, False, mode, triangle, sth, out)
+        self._remember(state, points, triangle, beyond, sth[2], xyz=xyz)
+        return triangle, sth, out
+
     def _warm(self, points, state, derivatives):
         """``vn.project_warm`` of points (n, 3) [m] from the remembered call ``state``, kept as
         the next start when every point is still in its triangle; None otherwise."""
@@ -284,13 +356,17 @@ class TriangulatedSurface(Seabed):
             return None
         gathered = state[4]
         if gathered is None:  # the triangles changed since the fused path last read them
-            if self._warm_table is None:
-                self._warm_table = vn.warm_table(self._table)
-            gathered = vn.gather(self._table, self._warm_table, state[1])
+            gathered = vn.gather(self._table, self._warm_tables(), state[1])
         warm = vn.project_warm(points, gathered, state[3], derivatives)
         if warm is not None:
             self._remember(state, points, state[1], np.zeros(len(points), dtype=bool), warm[2], gathered)
         return warm
+
+    def _warm_tables(self):
+        """``vn.warm_table`` of this surface (32, k), built at the first warm start."""
+        if self._warm_table is None:
+            self._warm_table = vn.warm_table(self._table)
+        return self._warm_table
 
     def _below(self, points, start=None):
         """Triangle (n,) below points (n, 3) [m] in plan, or the nearest one beyond the mesh's edge.
@@ -363,6 +439,11 @@ class TriangulatedSurface(Seabed):
         return (f"triangulated surface, {len(self.vertices)} vertices, {len(self.triangles)} triangles, "
                 f"x [{low[0]:g}, {high[0]:g}] y [{low[1]:g}, {high[1]:g}] z [{low[2]:g}, {high[2]:g}] m, "
                 "vertex-normal projection")
+
+
+def _component_first(state):
+    """The points (3, n) [m] of a remembered call, C-contiguous."""
+    return np.ascontiguousarray(state[0].T) if state[5] is None else state[5]
 
 
 def _checked(points):
