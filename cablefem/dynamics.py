@@ -119,7 +119,7 @@ class Integrator:
         A[fem.free_dofs] = spla.spsolve(K.tocsc(), rhs).reshape(-1, 3)
         return A
 
-    def newton(self, X1, point, factors, t_eval):
+    def newton(self, X1, point, factors, t_eval, retry=True):
         """Solve the step residual M A + G = 0 on the free rows for the new positions X1 (N, 3).
 
         point(X1) -> (X, V, A) where the loads are evaluated; factors = (v_x, a_x, g_x) with
@@ -134,6 +134,7 @@ class Integrator:
         """
         free = self.fem.free_dofs
         v_x, a_x, g_x = factors
+        start = X1
         rows = None
         fresh = not self.reuse_jacobian or self._lu is None or self._lu_factors != factors
         previous = None
@@ -167,9 +168,9 @@ class Integrator:
                 return X1, rows, True
             fresh = not self.reuse_jacobian or (rho is not None and rho > self.CONTRACTION)
             previous = size
-        if self.reuse_jacobian and not fresh:
-            self._lu = None  # retry the step with a fresh tangent before halving it
-            return self.newton(X1, point, factors, t_eval)
+        if self.reuse_jacobian and retry:
+            self._lu = None  # retry the step once, from its start, with a fresh tangent
+            return self.newton(start, point, factors, t_eval, retry=False)
         self._lu = None
         return X1, rows, False
 
