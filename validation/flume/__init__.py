@@ -1,0 +1,1 @@
+"""desire2023 flume cases (Sec. 4): three seabeds x two fairlead motions."""
