@@ -84,7 +84,7 @@ def cmd_static(args):
 
 def cmd_run(args):
     """``cablefem run [SCENE] [--out DIR] [--duration T] [--dt DT]``."""
-    from .run import run_scene
+    from .run import run_scene, setting_warnings
 
     scene = _load(args.scene)
     for value, key in ((args.duration, "--duration"), (args.dt, "--dt")):
@@ -94,6 +94,8 @@ def cmd_run(args):
     print(f"scene {scene.name}: seabed {scene.seabed.describe()}; writing to {out}")
     for note in scene.notes:
         print(f"  note: {note}")
+    for warning in setting_warnings(scene, args.dt):
+        print(f"cablefem: warning: {warning}", file=sys.stderr)
     summary = run_scene(scene, out, duration=args.duration, dt=args.dt)
     for name, extremes in summary["tension_extremes"].items():
         print(f"{name}: fairlead tension {extremes['fairlead_tension_min']:.4e} .. "

@@ -75,6 +75,30 @@ def start_states(scene, t0=0.0):
     return states, iterations
 
 
+#: largest rho_inf of generalised-alpha that stayed bounded on a stiff taut line at omega dt >> 1
+SAFE_RHO_INF = 0.5
+
+
+def setting_warnings(scene, dt=None):
+    """Warnings about solver settings known to fail on this scene, said before the run starts.
+
+    Generalised-alpha with rho_inf above ``SAFE_RHO_INF`` pumps energy into a line whose
+    highest axial frequency, omega = (2 / h) sqrt(EA / m) for the shortest element h, is
+    not resolved by the step (omega dt > 1): verification/stability, case 7b."""
+    solver = scene.solver
+    dt = float(solver.dt if dt is None else dt)
+    warnings = []
+    if solver.integrator == "generalized-alpha" and solver.rho_inf > SAFE_RHO_INF:
+        omega = max(2.0 / (seg.length / seg.elements / line.order) * np.sqrt(seg.type.EA / seg.type.mass)
+                    for line in scene.lines for seg in line.segments)
+        if omega * dt > 1.0:
+            warnings.append(
+                f"generalized-alpha with rho_inf = {solver.rho_inf:g} > {SAFE_RHO_INF:g} at omega dt = "
+                f"{omega * dt:.3g}: this scheme can pump energy into a stiff line going taut "
+                f"(nonlinear instability); use rho_inf <= {SAFE_RHO_INF:g} or integrator = \"bdf2\"")
+    return warnings
+
+
 def _bounds(scene, margin=0.1):
     points = np.array([p for line in scene.lines for p in (line.anchor, line.fairlead)])
     lo, hi = points[:, :2].min(axis=0), points[:, :2].max(axis=0)
@@ -104,11 +128,13 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
                    for line, X0 in zip(scene.lines, states)]
     frames = TimeSeriesWriter(out_dir, scene.name)
     tracker = _Extremes([line.name for line in scene.lines])
-    summary = {"scene": scene.name, "seabed": scene.seabed.describe(), "notes": list(scene.notes),
+    summary = {"scene": scene.name, "seabed": scene.seabed.describe(),
+               "notes": list(scene.notes) + setting_warnings(scene, dt),
                "static_newton_iterations": static_iterations, "dt": dt, "duration": duration}
     bar = _progress(progress, duration)
     every = scene.output.every if solver.adaptive else max(scene.output.every, dt)
-    next_frame = 0.0
+    frame = 0  # frames fall at frame * every, not at a sum of steps carrying round-off
+    near = 1e-6 * dt  # times closer than this are the same time
     step_control = _StepControl(solver, dt)
     status = "completed"
     try:
@@ -121,12 +147,12 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
                 table.writerow([f"{t:.10g}"] + [f"{x:.10g}" for f, a in forces for x in
                                                 (np.linalg.norm(f), np.linalg.norm(a), *f)])
                 tracker.update(t, forces)
-                if t >= next_frame - 1e-9 * dt:
+                if t >= frame * every - near:
                     frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V) for i in integrators]))
-                    next_frame += every
-                if t >= duration - 1e-9 * dt:
+                    frame = int(np.floor((t + near) / every)) + 1
+                if t >= duration - near:
                     break
-                step = step_control.advance(integrators, min(duration, next_frame) - t)
+                step = step_control.advance(integrators, min(duration, frame * every) - t)
                 handle.flush()
                 if bar is not None:
                     bar.update(step)
@@ -158,6 +184,9 @@ class _StepControl:
     estimate so that the tension error per step stays near ``solver.error_tolerance``
     (a fraction of the largest tension), never above dt; all lines step together."""
 
+    #: a step may stretch by this fraction to land on an output time instead of leaving a sliver
+    STRETCH = 1e-3
+
     def __init__(self, solver, dt):
         self.adaptive = solver.adaptive
         self.tolerance = solver.error_tolerance
@@ -168,7 +197,11 @@ class _StepControl:
     def advance(self, integrators, to_stop):
         """Take one step (retrying smaller ones when adaptive) of at most ``to_stop`` [s]."""
         while True:
-            h = min(self.h, to_stop) if self.adaptive else min(self.max_dt, to_stop)
+            h = self.h if self.adaptive else self.max_dt
+            if to_stop <= h * (1 + self.STRETCH):  # land on the stop, never leave a sliver before it
+                h = to_stop
+            elif to_stop < 2 * h:
+                h = to_stop / 2
             snapshots = [integ.snapshot() for integ in integrators]
             first = any(getattr(integ, "previous", True) is None for integ in integrators)
             for integ in integrators:

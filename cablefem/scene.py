@@ -87,7 +87,7 @@ class Solver:
     tolerance: float = 1e-8
     max_iterations: int = 50
     assembly: str = "kernel"
-    rho_inf: float = 0.8
+    rho_inf: float = 0.5
     fit_touchdown: bool = True
     newton: str = "auto"
     adaptive: bool = False
