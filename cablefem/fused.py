@@ -15,8 +15,9 @@ A system with any other load, or a lumped mass, keeps the reference path.
 The per-point functions and the element loop are compiled with numba's
 reference counting off (``_nrt=False``; they allocate nothing): with it on,
 every scratch view and array argument costs an atomic increment and
-decrement, which was 3/4 of a point's time (a residual evaluation of 80 P2
-elements went from ~180 to ~65 us; verification/work_precision/README.md).
+decrement, which was 3/4 of a point's time. With that and the gap of a plane
+seabed computed in the loop, a residual evaluation of 80 P2 elements went
+from ~185 to ~45 us (verification/work_precision/README.md).
 """
 
 import numpy as np
