@@ -16,7 +16,7 @@ import time
 
 import numpy as np
 
-from .dynamics import INTEGRATORS
+from .dynamics import INTEGRATORS, Integrator
 from .errors import InputError
 from .io.vtk import TimeSeriesWriter, polyline_mesh, write_atomic
 from .line import Line
@@ -184,9 +184,6 @@ class _StepControl:
     estimate so that the tension error per step stays near ``solver.error_tolerance``
     (a fraction of the largest tension), never above dt; all lines step together."""
 
-    #: a step may stretch by this fraction to land on an output time instead of leaving a sliver
-    STRETCH = 1e-3
-
     def __init__(self, solver, dt):
         self.adaptive = solver.adaptive
         self.tolerance = solver.error_tolerance
@@ -198,7 +195,7 @@ class _StepControl:
         """Take one step (retrying smaller ones when adaptive) of at most ``to_stop`` [s]."""
         while True:
             h = self.h if self.adaptive else self.max_dt
-            if to_stop <= h * (1 + self.STRETCH):  # land on the stop, never leave a sliver before it
+            if to_stop <= h * (1 + Integrator.STRETCH):  # land on the stop, never leave a sliver before it
                 h = to_stop
             elif to_stop < 2 * h:
                 h = to_stop / 2

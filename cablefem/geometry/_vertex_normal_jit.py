@@ -69,15 +69,18 @@ def _polish(c0, c1, c2, c3, h):
 
 
 @njit(inline="always", **_JIT)
+def _edges_at(rows, k, h):
+    """Edges a = e1 + h dn1 and b = e2 + h dn2 of triangle k of ``rows`` lifted to height h."""
+    return (rows[k, _E1] + h * rows[k, _DN1], rows[k, _E1 + 1] + h * rows[k, _DN1 + 1],
+            rows[k, _E1 + 2] + h * rows[k, _DN1 + 2], rows[k, _E2] + h * rows[k, _DN2],
+            rows[k, _E2 + 1] + h * rows[k, _DN2 + 1], rows[k, _E2 + 2] + h * rows[k, _DN2 + 2])
+
+
+@njit(inline="always", **_JIT)
 def _barycentric(rows, k, q0, q1, q2, h):
     """(s, t) of height h for the offset q = p - P_0 in the triangle k of ``rows`` (k, 30)
     (``_vertex_normal._barycentric``: the normal equations of q - h n_0 = s a + t b)."""
-    a0 = rows[k, _E1] + h * rows[k, _DN1]
-    a1 = rows[k, _E1 + 1] + h * rows[k, _DN1 + 1]
-    a2 = rows[k, _E1 + 2] + h * rows[k, _DN1 + 2]
-    b0 = rows[k, _E2] + h * rows[k, _DN2]
-    b1 = rows[k, _E2 + 1] + h * rows[k, _DN2 + 1]
-    b2 = rows[k, _E2 + 2] + h * rows[k, _DN2 + 2]
+    a0, a1, a2, b0, b1, b2 = _edges_at(rows, k, h)
     r0, r1, r2 = q0 - h * rows[k, _N0], q1 - h * rows[k, _N0 + 1], q2 - h * rows[k, _N0 + 2]
     aa = a0 * a0 + a1 * a1 + a2 * a2
     bb = b0 * b0 + b1 * b1 + b2 * b2
@@ -197,12 +200,7 @@ def _evaluate(x0, x1, x2, rows, k, s, t, h, clamped, mode, out, i):
         if mode == GAP_AND_DIRECTION:
             out[1, i], out[2, i], out[3, i] = n0 / length, n1 / length, n2 / length
         return
-    a0 = rows[k, _E1] + h * rows[k, _DN1]
-    a1 = rows[k, _E1 + 1] + h * rows[k, _DN1 + 1]
-    a2 = rows[k, _E1 + 2] + h * rows[k, _DN1 + 2]
-    b0 = rows[k, _E2] + h * rows[k, _DN2]
-    b1 = rows[k, _E2 + 1] + h * rows[k, _DN2 + 1]
-    b2 = rows[k, _E2 + 2] + h * rows[k, _DN2 + 2]
+    a0, a1, a2, b0, b1, b2 = _edges_at(rows, k, h)
     ab0, ab1, ab2 = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
     det = ab0 * n0 + ab1 * n1 + ab2 * n2
     # rows of J^-1: d(s, t)/dp = (b x n, n x a) / det J
