@@ -24,6 +24,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from .errors import ConvergenceError
+from .march import DONE, FAILED, Marcher
 
 
 class Integrator:
@@ -40,6 +41,8 @@ class Integrator:
 
     #: contraction factor of modified Newton above which the tangent is rebuilt
     CONTRACTION = 0.3
+    #: smallest fraction of a Newton step the residual line search tries
+    MIN_DAMPING = 1.0 / 16.0
     #: largest ratio of a step to the one before: variable-step BDF2 is zero-stable for ratios
     #: below 1 + sqrt(2) (Grigorieff 1983); halved steps grow back by doubling
     MAX_GROWTH = 2.0
@@ -112,6 +115,12 @@ class Integrator:
         A = np.zeros_like(self.X)
         X, V = self.X.copy(), self.V.copy()
         self.set_boundary(X, V, A, self.t)
+        if self.fused is not None:  # the same, compiled: the mass is the tangent's a_x part
+            rows, with_mass = self.fused.evaluate(X, V, A, 0.0, 1.0)
+            if np.linalg.norm(rows[fem.free_dofs]) > 1e-12 * self.scale:
+                mass = with_mass - self.fused.evaluate(X, V, A, 0.0, 0.0)[1]
+                A[fem.free_dofs] = self.fused.solve(self.fused.factorize(mass), rows)
+            return A
         residual, blocks = system.evaluate(system.state(X, V, A, self.t), jacobian=True,
                                            velocity_factor=0.0, acceleration_factor=1.0)
         rhs = -(residual + self.inertia(A))[fem.free_dofs].ravel()
@@ -137,6 +146,11 @@ class Integrator:
         the residual is below the tolerance or when the increment, extrapolated by the
         observed contraction (rho / (1 - rho), Hairer & Wanner IV.8), is below the increment
         tolerance. A fresh tangent gives Newton's quadratic convergence.
+
+        A Newton step that does not reduce the residual norm (Armijo's test, Kelley 2003 Sec.
+        8.1) is halved, down to ``MIN_DAMPING``: seabed friction and contact switch between
+        regimes, and undamped Newton can cycle between two states (measured on the snap-load
+        flume case: residuals alternating 0.43, 0.39, 0.43, ... until the step was halved).
         """
         free = self.fem.free_dofs
         v_x, a_x, g_x = factors
@@ -144,14 +158,20 @@ class Integrator:
         rows = None
         fresh = not self.reuse_jacobian or self._lu is None or self._lu_factors != factors
         previous = None
+        base, damping = None, 1.0  # (X1, norm, dX) of the last Newton step taken, its damping
         for _ in range(self.max_iterations):
             X, V, A = point(X1)
             rows, tangent = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, fresh)
             norm = np.linalg.norm(rows[free]) / self.scale
-            if not np.isfinite(norm):
-                break
             if norm <= self.tolerance and previous is not None:
                 return X1, rows, True
+            if base is not None and damping > self.MIN_DAMPING and not norm <= (1 - 1e-4 * damping) * base[1]:
+                damping *= 0.5
+                X1 = base[0].copy()
+                X1[free] += damping * base[2]
+                continue
+            if not np.isfinite(norm):
+                break
             if fresh:
                 self.njev += 1
                 self._lu = self.factorize(tangent, g_x, a_x)
@@ -162,6 +182,7 @@ class Integrator:
             dX = self.solve(self._lu, rows)
             if not np.all(np.isfinite(dX)):
                 break
+            base, damping = (X1, norm, dX), 1.0
             X1 = X1.copy()
             X1[free] += dX
             self.newton_iterations += 1
@@ -210,13 +231,14 @@ class Integrator:
         return self.system.evaluate(self.system.state(X, V, A, t), jacobian, v_x, a_x)
 
     # --------------------------------------------------------------- step
-    def step(self, dt=None):
+    def step(self, dt=None, first=None):
         """Advance exactly by dt (default: the current step) [s]. A step whose Newton fails is
         halved, down to ``min_dt``; no step is longer than ``MAX_GROWTH`` times the step before,
         so after a failure (or a short step that landed on an output time) the steps grow back
-        to dt by doubling. Returns dt."""
+        to dt by doubling. ``first``: the first attempt's size, when a caller has seen a longer
+        one fail. Returns dt."""
         target = float(dt or self.dt)
-        done, h = 0.0, target
+        done, h = 0.0, float(first or target)
         while target - done > 1e-9 * target:
             remaining = target - done
             h = min(h, remaining)
@@ -238,6 +260,27 @@ class Integrator:
             done += h
             h = target
         return target
+
+    def march(self, times):
+        """Step to each of ``times`` (ascending, after t) in turn, each as ``step`` does; returns
+        the forces (m, 2, 3) the line exerts on its fairlead and anchor after each step."""
+        forces = np.empty((len(times), 2, 3))
+        for k, t in enumerate(times):
+            try:
+                self.step(t - self.t)
+            except ConvergenceError as error:
+                error.forces = forces[:k]  # the steps taken, for a caller writing them out
+                raise
+            forces[k] = self.reactions()
+        return forces
+
+    def fairlead_positions(self, times):
+        """The prescribed fairlead positions (m, 3) at ``times`` (m,): one vectorised call when the
+        boundary offers ``positions`` (``cablefem.run.FairleadPath``), else one call per time."""
+        positions = getattr(self.boundary, "positions", None)
+        if positions is not None:
+            return positions(np.asarray(times, dtype=float))
+        return np.array([self.boundary(t)[0] for t in times], dtype=float).reshape(-1, 3)
 
     def snapshot(self):
         """The state needed to undo steps (see ``restore``)."""
@@ -289,13 +332,45 @@ class Integrator:
 
 
 class BDF2(Integrator):
-    """Variable-step BDF2 on X and V (desire2023 Sec. 2.1.2), started by one backward-Euler step."""
+    """Variable-step BDF2 on X and V (desire2023 Sec. 2.1.2), started by one backward-Euler step.
+
+    On a plane seabed with the fused kernel and full Newton, steps run compiled, Newton
+    iterations included (``cablefem.march``): ``march`` takes runs of steps in one call and
+    ``attempt`` one step; the numbers are those of the Python path to round-off."""
 
     name = "bdf2"
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
         self.previous = None  # (h, X, V) of the step before
+        self.marcher = Marcher.for_integrator(self)
+
+    def march(self, times):
+        if self.marcher is None:
+            return super().march(times)
+        times = np.asarray(times, dtype=float)
+        fairlead = self.fairlead_positions(times)
+        forces = np.empty((len(times), 2, 3))
+        k = 0
+        while k < len(times):
+            status, done, forces[k:] = self.marcher.run(self, times[k:], fairlead[k:],
+                                                        self.MAX_GROWTH * (1 + self.STRETCH))
+            self.steps += done
+            k += done
+            if status == DONE:
+                break
+            # Newton failed (halve, as ``step`` does) or the step would grow too fast (``step``
+            # grows it back by doubling): this step goes through ``step``, the rest resume here
+            failed = status == FAILED
+            self.rejected += failed
+            try:
+                self.step(times[k] - self.t, first=0.5 * (times[k] - self.t) if failed else None)
+            except ConvergenceError as error:
+                error.forces = forces[:k]
+                raise
+            forces[k] = self.reactions()
+            k += 1
+        return forces
 
     def error_estimate(self):
         """Relative tension error of the last step by Milne's device: the Taylor predictor P
@@ -310,6 +385,9 @@ class BDF2(Integrator):
         return (1 + 2 * w) / ((1 + w) * h), -(1 + w) / h, w * w / ((1 + w) * h)
 
     def attempt(self, h):
+        if self.marcher is not None:
+            t1 = self.t + h
+            return self.marcher.run(self, [t1], self.boundary(t1)[0][None], np.inf)[1] == 1
         c0, c1, c2 = self.coefficients(h)
         t1 = self.t + h
         Xp, Vp = (self.X, self.V) if self.previous is None else self.previous[1:]

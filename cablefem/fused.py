@@ -268,23 +268,24 @@ def _assemble(X, V, Acc, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params
     _assemble_loop(X, V, Acc, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass,
                    bed, plane, gap, normal, grad_gap, dnormal, v_x, a_x, jac, rows, band, kl, ku, position.max(),
                    np.zeros((7, 3)), np.zeros((4, 3, 3)), np.zeros((nloc, 3)), np.zeros((nloc, 3, nloc, 3)),
-                   np.zeros((12, 3, 3)), np.zeros((12, 3)))
+                   np.zeros((12, 3, 3)), np.zeros((12, 3)), np.arange(dofs.shape[0]))
 
 
 @njit(cache=True, _nrt=False)
 def _assemble_loop(X, V, Acc, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass, bed,
                    plane, gap, normal, grad_gap, dnormal, v_x, a_x, jac, rows, band, kl, ku, last, vec, blk,
-                   Re, Ke, M, u):
-    """The loop of ``_assemble`` on zeroed scratch it is given (vec (7, 3), blk (4, 3, 3), Re, Ke, M,
-    u): it allocates nothing, so it runs without reference counting (see the module docstring)."""
+                   Re, Ke, M, u, elements):
+    """The loop of ``_assemble`` over ``elements`` on zeroed scratch it is given (vec (7, 3), blk
+    (4, 3, 3), Re, Ke, M, u): it allocates nothing, so it runs without reference counting (see the
+    module docstring)."""
     on_plane = plane.shape[0] == 4
     flat = plane[:3]
     zero = blk[3]  # the normal's gradient on a plane
-    nel, nloc = dofs.shape
+    nloc = dofs.shape[1]
     nq, nr = dx.shape[1], rdx.shape[1]
     f, N, r, dr, v, acc, dv = vec[0], vec[1], vec[2], vec[3], vec[4], vec[5], vec[6]
     Ab, Bb, Db = blk[0], blk[1], blk[2]
-    for e in range(nel):
+    for e in elements:
         Re[:] = 0.0
         Ke[:] = 0.0
         for g in range(nq):

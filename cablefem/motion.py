@@ -13,56 +13,58 @@ _PLANE_AXES = {"xy": (0, 1), "xz": (0, 2), "yz": (1, 2), "yx": (1, 0), "zx": (2,
 
 
 def _ramp(t, ramp):
-    """Smoothstep S(t/ramp) and its first two time derivatives."""
-    if ramp <= 0.0 or t >= ramp:
-        return 1.0, 0.0, 0.0
-    if t <= 0.0:
-        return 0.0, 0.0, 0.0
-    u = t / ramp
-    return 3 * u**2 - 2 * u**3, (6 * u - 6 * u**2) / ramp, (6 - 12 * u) / ramp**2
+    """Smoothstep S(t/ramp) and its first two time derivatives at the times t (n,)."""
+    if ramp <= 0.0 or t.min() >= ramp:
+        return np.ones_like(t), np.zeros_like(t), np.zeros_like(t)
+    u = np.minimum(np.maximum(t / ramp, 0.0), 1.0)
+    inside = (t > 0.0) & (t < ramp)
+    return (3 * u**2 - 2 * u**3, np.where(inside, (6 * u - 6 * u**2) / ramp, 0.0),
+            np.where(inside, (6 - 12 * u) / ramp**2, 0.0))
 
 
 def _raw(motion, t):
-    """Unramped displacement, velocity, acceleration (3,) of ``motion`` at time t [s]."""
+    """Unramped displacement, velocity, acceleration (n, 3) of ``motion`` at the times t (n,) [s]."""
     kind = motion.kind
-    zero = np.zeros(3)
+    zero = np.zeros((t.size, 3))
     if kind == "fixed":
         return zero, zero, zero
     if kind in ("harmonic", "circular"):
         omega = 2.0 * np.pi / motion.period
+        offset = np.asarray(motion.offset, dtype=float)
+        s, c = np.sin(omega * t)[:, None], np.cos(omega * t)[:, None]
         if kind == "harmonic":
             amplitude = np.asarray(motion.amplitude, dtype=float)
-            offset = np.asarray(motion.offset, dtype=float)
-            s, c = np.sin(omega * t), np.cos(omega * t)
             return offset + amplitude * s, amplitude * omega * c, -amplitude * omega**2 * s
         i, j = _PLANE_AXES[motion.plane]
         d, v, a = zero.copy(), zero.copy(), zero.copy()
-        offset = np.asarray(motion.offset, dtype=float)
         R = motion.radius
-        s, c = np.sin(omega * t), np.cos(omega * t)
-        d[i], d[j] = R * s, R * c
-        v[i], v[j] = R * omega * c, -R * omega * s
-        a[i], a[j] = -R * omega**2 * s, -R * omega**2 * c
+        d[:, i], d[:, j] = R * s[:, 0], R * c[:, 0]
+        v[:, i], v[:, j] = R * omega * c[:, 0], -R * omega * s[:, 0]
+        a[:, i], a[:, j] = -R * omega**2 * s[:, 0], -R * omega**2 * c[:, 0]
         return offset + d, v, a
     if kind == "table":
-        return _table(motion.times, motion.positions, t)
+        return _table(np.asarray(motion.times, dtype=float), np.asarray(motion.positions, dtype=float), t)
     raise ValueError(f"unknown motion kind {kind!r}")
 
 
 def _table(times, positions, t):
-    """Piecewise-linear position from a table, its slope, and zero acceleration (held at the ends)."""
-    if t <= times[0]:
-        return positions[0].copy(), np.zeros(3), np.zeros(3)
-    if t >= times[-1]:
-        return positions[-1].copy(), np.zeros(3), np.zeros(3)
-    k = int(np.searchsorted(times, t, side="right")) - 1
-    h = times[k + 1] - times[k]
-    slope = (positions[k + 1] - positions[k]) / h
-    return positions[k] + (t - times[k]) * slope, slope, np.zeros(3)
+    """Piecewise-linear positions from a table, their slopes, and zero accelerations (held at the
+    ends), at the times t (n,)."""
+    k = np.clip(np.searchsorted(times, t, side="right") - 1, 0, len(times) - 2)
+    slope = (positions[k + 1] - positions[k]) / (times[k + 1] - times[k])[:, None]
+    before, after = t <= times[0], t >= times[-1]
+    slope[before | after] = 0.0
+    d = positions[k] + (t - times[k])[:, None] * slope
+    d[before], d[after] = positions[0], positions[-1]
+    return d, slope, np.zeros_like(d)
 
 
 def fairlead_motion(motion, t):
-    """Ramped displacement [m], velocity [m/s] and acceleration [m/s^2] (each (3,)) at time t [s]."""
-    d, v, a = _raw(motion, t)
-    S, dS, ddS = _ramp(t, motion.ramp)
-    return S * d, S * v + dS * d, S * a + 2 * dS * v + ddS * d
+    """Ramped displacement [m], velocity [m/s] and acceleration [m/s^2] at time t [s]: each (3,)
+    for a scalar t, (n, 3) for times t (n,)."""
+    times = np.array(t, dtype=float, ndmin=1)
+    d, v, a = _raw(motion, times)
+    S, dS, ddS = _ramp(times, motion.ramp)
+    S, dS, ddS = S[:, None], dS[:, None], ddS[:, None]
+    d, v, a = S * d, S * v + dS * d, S * a + 2 * dS * v + ddS * d
+    return (d[0], v[0], a[0]) if np.ndim(t) == 0 else (d, v, a)

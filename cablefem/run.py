@@ -17,7 +17,7 @@ import time
 import numpy as np
 
 from .dynamics import INTEGRATORS, Integrator
-from .errors import InputError
+from .errors import ConvergenceError, InputError
 from .io.vtk import TimeSeriesWriter, polyline_mesh, write_atomic
 from .line import Line
 from .motion import fairlead_motion
@@ -43,31 +43,47 @@ def dynamic_loads(scene, props):
     return loads
 
 
-def build_system(scene, line, dynamic=True):
-    """The ``LineSystem`` of one line of a scene; ``dynamic`` adds drag, added mass and friction."""
+def build_system(scene, line, dynamic=True, fem=None):
+    """The ``LineSystem`` of one line of a scene; ``dynamic`` adds drag, added mass and friction;
+    ``fem`` shares the FEM of another system of the same line."""
     system = LineSystem(line, scene.seabed, scene.contact, scene.environment,
                         assembly=scene.solver.assembly,
-                        friction=scene.friction if dynamic else None)
+                        friction=scene.friction if dynamic else None, fem=fem)
     if dynamic:
         system.loads.extend(dynamic_loads(scene, system.props))
     return system
 
 
+class FairleadPath:
+    """The fairlead's prescribed path: path(t) -> (position, velocity, acceleration), each (3,);
+    path.positions(times) -> positions (m, 3), in one vectorised call."""
+
+    def __init__(self, motion, fairlead):
+        self.motion = motion
+        self.fairlead = np.asarray(fairlead, dtype=float)
+
+    def __call__(self, t):
+        d, v, a = fairlead_motion(self.motion, t)
+        return self.fairlead + d, v, a
+
+    def positions(self, times):
+        return self.fairlead + fairlead_motion(self.motion, times)[0]
+
+
 def boundary_path(scene, line):
-    """The fairlead's prescribed path: t -> (position, velocity, acceleration), each (3,)."""
-    def boundary(t):
-        d, v, a = fairlead_motion(scene.motion, t)
-        return line.fairlead + d, v, a
-    return boundary
+    """The fairlead's prescribed path of ``line`` in ``scene`` (a ``FairleadPath``)."""
+    return FairleadPath(scene.motion, line.fairlead)
 
 
-def start_states(scene, t0=0.0):
-    """Static equilibrium of every line with its fairlead where the motion puts it at t0."""
+def start_states(scene, t0=0.0, systems=None):
+    """Static equilibrium of every line with its fairlead where the motion puts it at t0;
+    ``systems``: the lines' dynamic systems, whose FEM the static ones share."""
     states, iterations = [], 0
-    for line in scene.lines:
+    for k, line in enumerate(scene.lines):
         d0 = fairlead_motion(scene.motion, t0)[0]
         moved = Line(line.name, line.anchor, line.fairlead + d0, line.segments, line.order)
-        result = solve_static(build_system(scene, moved, dynamic=False),
+        fem = None if systems is None else systems[k].fem
+        result = solve_static(build_system(scene, moved, dynamic=False, fem=fem),
                               tolerance=scene.solver.tolerance,
                               max_iterations=scene.solver.max_iterations)
         states.append(result.X)
@@ -117,15 +133,15 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
     os.makedirs(out_dir, exist_ok=True)
     start = time.perf_counter()
     write_seabed_vtu(scene.seabed, os.path.join(out_dir, "seabed.vtu"), _bounds(scene))
-    states, static_iterations = start_states(scene)
     integrator_class = INTEGRATORS[solver.integrator]
     options = {"rho_inf": solver.rho_inf} if solver.integrator == "generalized-alpha" else {}
     if solver.adaptive and solver.integrator != "bdf2":
         raise InputError("adaptive steps need integrator = \"bdf2\"", key="solver.adaptive")
-    integrators = [integrator_class(build_system(scene, line), X0, boundary_path(scene, line),
-                                    dt=dt, tolerance=solver.tolerance,
-                                    newton=solver.newton, **options)
-                   for line, X0 in zip(scene.lines, states)]
+    systems = [build_system(scene, line) for line in scene.lines]
+    states, static_iterations = start_states(scene, systems=systems)
+    integrators = [integrator_class(system, X0, boundary_path(scene, line), dt=dt,
+                                    tolerance=solver.tolerance, newton=solver.newton, **options)
+                   for system, line, X0 in zip(systems, scene.lines, states)]
     frames = TimeSeriesWriter(out_dir, scene.name)
     tracker = _Extremes([line.name for line in scene.lines])
     summary = {"scene": scene.name, "seabed": scene.seabed.describe(),
@@ -135,27 +151,32 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
     every = scene.output.every if solver.adaptive else max(scene.output.every, dt)
     frame = 0  # frames fall at frame * every, not at a sum of steps carrying round-off
     near = 1e-6 * dt  # times closer than this are the same time
-    step_control = _StepControl(solver, dt)
+    step_control = StepControl(solver, dt)
     status = "completed"
     try:
         with open(os.path.join(out_dir, "tensions.csv"), "w", newline="") as handle:
             table = csv.writer(handle)
             table.writerow(_columns(scene))
+            t = integrators[0].t
+            rows = [(t, [integ.reactions() for integ in integrators])]
             while True:
-                t = integrators[0].t
-                forces = [integ.reactions() for integ in integrators]
-                table.writerow([f"{t:.10g}"] + [f"{x:.10g}" for f, a in forces for x in
-                                                (np.linalg.norm(f), np.linalg.norm(a), *f)])
-                tracker.update(t, forces)
+                for t, forces in rows:
+                    table.writerow([f"{t:.10g}"] + [f"{x:.10g}" for f in forces for x in _row(f)])
+                    tracker.update(t, forces)
+                handle.flush()
                 if t >= frame * every - near:
                     frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V) for i in integrators]))
                     frame = int(np.floor((t + near) / every)) + 1
                 if t >= duration - near:
                     break
-                step = step_control.advance(integrators, min(duration, frame * every) - t)
-                handle.flush()
+                stop = min(duration, frame * every)
+                if solver.adaptive:
+                    step_control.advance(integrators, stop - t)
+                    rows = [(integrators[0].t, [integ.reactions() for integ in integrators])]
+                else:  # fixed steps to the next output time, each line in one call
+                    rows = _march(integrators, step_control.times(t, stop), table)
                 if bar is not None:
-                    bar.update(step)
+                    bar.update(rows[-1][0] - t)
     except KeyboardInterrupt:
         status = "interrupted"
         raise
@@ -179,10 +200,11 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
     return summary
 
 
-class _StepControl:
-    """Fixed steps of dt, or (``solver.adaptive``, BDF2) steps chosen from the local error
-    estimate so that the tension error per step stays near ``solver.error_tolerance``
-    (a fraction of the largest tension), never above dt; all lines step together."""
+class StepControl:
+    """Fixed steps of dt (``times``), or (``solver.adaptive``, BDF2; ``advance``) steps chosen
+    from the local error estimate so that the tension error per step stays near
+    ``solver.error_tolerance`` (a fraction of the largest tension), never above dt; all lines
+    step together. Either lands on the stops it is given without leaving a sliver before them."""
 
     def __init__(self, solver, dt):
         self.adaptive = solver.adaptive
@@ -190,6 +212,18 @@ class _StepControl:
         self.max_dt = dt
         self.h = dt / 8 if self.adaptive else dt
         self.accepted = self.rejected = 0
+
+    def times(self, t, stop):
+        """The times (m,) of fixed steps of dt from t to ``stop``: the last step stretches by up
+        to ``Integrator.STRETCH`` to land on it, and a remainder under 2 dt is split in two."""
+        times, dt = [], self.max_dt
+        while stop - t > 1e-9 * dt:
+            if stop - t <= dt * (1 + Integrator.STRETCH):
+                t = stop
+            else:
+                t += dt if stop - t >= 2 * dt else (stop - t) / 2
+            times.append(t)
+        return np.array(times)
 
     def advance(self, integrators, to_stop):
         """Take one step (retrying smaller ones when adaptive) of at most ``to_stop`` [s]."""
@@ -216,6 +250,29 @@ class _StepControl:
             for integ, snap in zip(integrators, snapshots):
                 integ.restore(snap)
             self.h = h * max(0.2, factor)
+
+
+def _march(integrators, times, table):
+    """Every line marched to ``times``: rows (t, [(fairlead, anchor) force per line]). If a line
+    fails, the rows every line reached are written to ``table`` before the error goes on."""
+    forces = []
+    try:
+        for integ in integrators:
+            forces.append(integ.march(times))
+    except ConvergenceError as error:
+        last = len(forces) == len(integrators) - 1  # the lines before it have all the rows
+        reached = len(error.forces) if last else 0
+        for k in range(reached):
+            table.writerow([f"{times[k]:.10g}"] + [f"{x:.10g}" for f in forces + [error.forces]
+                                                   for x in _row(f[k])])
+        raise
+    return [(tk, [f[k] for f in forces]) for k, tk in enumerate(times)]
+
+
+def _row(forces):
+    """fairlead_tension, anchor_tension, fx, fy, fz of one line's (fairlead, anchor) forces."""
+    fairlead, anchor = forces
+    return (np.linalg.norm(fairlead), np.linalg.norm(anchor), *fairlead)
 
 
 def _columns(scene):

@@ -40,15 +40,17 @@ def contact_damping(contact, props):
 
 
 class LineSystem:
-    """Residual and tangent of one line over a seabed, for statics and dynamics."""
+    """Residual and tangent of one line over a seabed, for statics and dynamics; ``fem``: the
+    ``LineFEM`` of a line with the same segments and order, to share instead of building one."""
 
     def __init__(self, line, seabed, contact, environment, quadrature_points=None,
-                 extra_loads=(), assembly="kernel", friction=None):
+                 extra_loads=(), assembly="kernel", friction=None, fem=None):
         self.line = line
         self.assembly = assembly
         self.seabed = seabed
         self.environment = environment
-        self.fem = LineFEM(line, quadrature_points)
+        # a line moved to another fairlead has the same mesh in arc length: its FEM can be shared
+        self.fem = fem or LineFEM(line, quadrature_points)
         self.props = props = element_properties(line)
         self.tension = Tension(props["EA"], props["damping"])
         self.weight = Weight(props["mass"], props["area"], environment.water_density, environment.gravity)

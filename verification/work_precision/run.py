@@ -44,7 +44,7 @@ if __package__ in (None, ""):  # python verification/work_precision/run.py
 
 from cablefem.dynamics import INTEGRATORS  # noqa: E402
 from cablefem.errors import ConvergenceError  # noqa: E402
-from cablefem.run import _StepControl, boundary_path, build_system, start_states  # noqa: E402
+from cablefem.run import StepControl, boundary_path, build_system, start_states  # noqa: E402
 from cablefem.scenes import FLUME_MOTIONS, flume_scene, table5_chain  # noqa: E402
 from validation.moordyn.run import (COUPLING_DT, FLUME_FILE_SEGMENTS, FLUME_LENGTH,  # noqa: E402
                                     differences, run_moordyn_case)
@@ -161,17 +161,23 @@ def run_cablefem(motion, duration, settings):
                            error_tolerance=s.error_tolerance, rho_inf=s.rho_inf, tolerance=s.tolerance)
     line = scene.lines[0]
     start = time.perf_counter()
-    (X0,), _ = start_states(scene)
+    system = build_system(scene, line)
+    (X0,), _ = start_states(scene, systems=[system])
     options = {"rho_inf": s.rho_inf} if s.integrator == "generalized-alpha" else {}
-    integ = INTEGRATORS[s.integrator](build_system(scene, line), X0, boundary_path(scene, line), dt=s.dt,
+    integ = INTEGRATORS[s.integrator](system, X0, boundary_path(scene, line), dt=s.dt,
                                       tolerance=scene.solver.tolerance, newton=scene.solver.newton, **options)
-    control = _StepControl(scene.solver, s.dt)
+    control = StepControl(scene.solver, s.dt)
     times, tensions = [integ.t], [np.linalg.norm(integ.reactions()[0])]
     try:
-        while integ.t < duration - 1e-9 * s.dt:
-            control.advance([integ], duration - integ.t)
-            times.append(integ.t)
-            tensions.append(np.linalg.norm(integ.reactions()[0]))
+        if s.adaptive:
+            while integ.t < duration - 1e-9 * s.dt:
+                control.advance([integ], duration - integ.t)
+                times.append(integ.t)
+                tensions.append(np.linalg.norm(integ.reactions()[0]))
+        else:
+            steps = control.times(integ.t, duration)
+            times.extend(steps)
+            tensions.extend(np.linalg.norm(integ.march(steps)[:, 0], axis=1))
     except ConvergenceError as error:
         return {"failed": str(error), "wall_time_s": time.perf_counter() - start}
     wall = time.perf_counter() - start

@@ -1,0 +1,318 @@
+"""BDF2 steps with their Newton iterations in one compiled loop (numba, LAPACK's banded LU).
+
+``cablefem.fused`` compiles the residual and the banded tangent; a step still
+spent ~90 us per Newton iteration in Python around them (the state update,
+norms, the LU and solve calls through scipy, the boundary motion), more than
+the compiled work itself on the small meshes that the coarse accuracy levels
+use (verification/work_precision/README.md). This module runs whole steps,
+and runs of steps, without returning to Python: the same variable-step BDF2
+(``cablefem.dynamics.BDF2``, desire2023 Sec. 2.1.2: backward Euler to start,
+then y' ~ c0 y_{n+1} + c1 y_n + c2 y_{n-1} on X and V) and the same full Newton
+with the same convergence tests as ``Integrator.newton``, line for line, so
+both paths give the same numbers to round-off (tests/test_march.py).
+
+The banded LU is LAPACK's unblocked algorithm (dgbtf2/dgbtrs) written out
+here: numba cannot cache a function that calls LAPACK through a ctypes pointer,
+and compiling on every start would cost ~30 s. At the bandwidths of a line
+(kl = ku = 3 (order + 1) - 1) the unblocked algorithm is what dgbtrf runs anyway.
+
+Full Newton and modified Newton (LU factors kept across iterations and steps,
+``[solver] newton``) are both here. It applies to a line on a plane seabed
+(where the kernel computes the gap itself) whose loads the fused kernel knows;
+other seabeds keep the per-step Python path, which projects onto the surface
+in numpy each iteration.
+"""
+
+import numpy as np
+from numba import njit
+
+from .fused import _assemble_loop
+
+#: status of a run of steps: all taken, Newton failed at step k, step k grows too fast
+DONE, FAILED, TOO_LONG = 0, 1, 2
+
+
+@njit(cache=True, _nrt=False)
+def _lu_banded(lu, n, kl, ku, ipiv, multipliers):
+    """Factor a banded matrix in place by LU with partial pivoting; False if it is singular.
+
+    ``lu`` (n (2 kl + ku + 1),) holds LAPACK's column-major band layout flat: row i, column j
+    at lu[j ld + kl + ku + i - j], ld = 2 kl + ku + 1, the top kl rows of each column free for
+    the fill that row swaps make. The algorithm is LAPACK's unblocked dgbtf2 (Golub & Van Loan,
+    Alg. 4.3.5 with row pivoting): U reaches ku columns right of the diagonal without swaps and
+    up to kl + ku with them, and the work follows that reach. Flat indexing runs ~25 % faster
+    than 2-D indexing here (numba). ``multipliers``: scratch (kl + 1,)."""
+    ld = 2 * kl + ku + 1
+    d = kl + ku  # row of the diagonal
+    reach = 0
+    for j in range(n):
+        below = min(kl, n - 1 - j)
+        diag = j * ld + d
+        p = 0
+        for i in range(1, below + 1):
+            if abs(lu[diag + i]) > abs(lu[diag + p]):
+                p = i
+        ipiv[j] = j + p
+        if lu[diag + p] == 0.0:
+            return False
+        reach = max(reach, min(n - 1, j + ku + p))
+        if p:
+            for c in range(j, reach + 1):
+                q = c * ld + d + j - c
+                lu[q], lu[q + p] = lu[q + p], lu[q]
+        inverse = 1.0 / lu[diag]
+        for i in range(1, below + 1):
+            lu[diag + i] *= inverse
+            multipliers[i] = lu[diag + i]
+        for c in range(j + 1, reach + 1):
+            q = c * ld + d + j - c
+            top = lu[q]
+            for i in range(1, below + 1):
+                lu[q + i] -= multipliers[i] * top
+    return True
+
+
+@njit(cache=True, _nrt=False)
+def _lu_solve(lu, n, kl, ku, ipiv, rhs):
+    """Solve in place with the factors of ``_lu_banded`` (LAPACK's dgbtrs)."""
+    ld = 2 * kl + ku + 1
+    d = kl + ku
+    for j in range(n):  # L y = P b
+        p = ipiv[j]
+        if p != j:
+            rhs[j], rhs[p] = rhs[p], rhs[j]
+        for i in range(1, min(kl, n - 1 - j) + 1):
+            rhs[j + i] -= lu[j * ld + d + i] * rhs[j]
+    for j in range(n - 1, -1, -1):  # U x = y
+        rhs[j] /= lu[j * ld + d]
+        for i in range(max(0, j - d), j):
+            rhs[i] -= lu[j * ld + d + i - j] * rhs[j]
+
+
+@njit(cache=True)
+def _point(X1, x_hist, v_hist, c0, V1, A1):
+    """V and A of BDF2 at positions X1: V = c0 X1 + x_hist, A = c0 V + v_hist."""
+    for i in range(X1.shape[0]):
+        for a in range(3):
+            V1[i, a] = c0 * X1[i, a] + x_hist[i, a]
+            A1[i, a] = c0 * V1[i, a] + v_hist[i, a]
+
+
+@njit(cache=True)
+def _newton(kernel, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key, rhs, base, step,
+            scratch, settings, counters):
+    """Newton on the step residual M A + G = 0 from X1 (updated in place), as
+    ``Integrator.newton``: full (a fresh tangent each iteration) or, with settings[5] > 0,
+    modified (the LU factors ``lu``/``ipiv`` kept across iterations and steps while the step's
+    c0 is ``lu_key[0]``, rebuilt when the iteration contracts slower than settings[6]).
+    ``band`` (the size of ``lu``) takes a fresh tangent before it is factored into ``lu``; a step
+    that does not reduce the residual norm is halved down to settings[7] (Armijo), from
+    ``base`` (N, 3) along ``step`` (n,) (scratch).
+    Returns True when converged, with V1, A1 and the end rows of ``rows`` at the solution."""
+    (dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass, bed, plane, gap,
+     normal, grad_gap, dnormal, kl, ku, free_nodes, free_order, all_elements, end_elements,
+     anchor_node, fairlead_node) = kernel
+    vec, blk, Re, Ke, M, u = scratch
+    tolerance, increment_tolerance, scale = settings[0], settings[1], settings[2]
+    reuse, contraction = settings[5] > 0.0, settings[6]
+    last = position.max()
+    nb = rhs.shape[0]
+    ld = 2 * kl + ku + 1
+    band2 = band.reshape((nb, ld)).T  # the (ld, nb) column-major view the assembly writes
+    multipliers = np.empty(kl + 1)
+    fresh = not reuse or lu_key[0] != c0
+    previous = -1.0  # none yet
+    base_norm, damping, min_damping = -1.0, 1.0, settings[7]  # base_norm < 0: no step taken yet
+    for _ in range(int(settings[3])):
+        _point(X1, x_hist, v_hist, c0, V1, A1)
+        rows[:] = 0.0
+        if fresh:
+            band[:] = 0.0
+        _assemble_loop(X1, V1, A1, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension,
+                       mass, bed, plane, gap, normal, grad_gap, dnormal, c0, c0 * c0, fresh, rows, band2,
+                       kl, ku, last, vec, blk, Re, Ke, M, u, all_elements)
+        counters[2] += 1
+        norm = 0.0
+        for i in free_nodes:
+            for a in range(3):
+                norm += rows[i, a] * rows[i, a]
+        norm = np.sqrt(norm) / scale
+        if norm <= tolerance and previous >= 0.0:
+            return True
+        if base_norm >= 0.0 and damping > min_damping and not norm <= (1 - 1e-4 * damping) * base_norm:
+            damping *= 0.5
+            X1[:] = base
+            for j in range(free_order.shape[0]):
+                for a in range(3):
+                    X1[free_order[j], a] += damping * step[3 * j + a]
+            continue
+        if not np.isfinite(norm):
+            break
+        if fresh:
+            counters[3] += 1
+            lu[:] = band
+            lu_key[0] = np.nan
+            if not _lu_banded(lu, nb, kl, ku, ipiv, multipliers):
+                break
+            counters[4] += 1
+            lu_key[0] = c0
+        for j in range(free_order.shape[0]):
+            for a in range(3):
+                rhs[3 * j + a] = -rows[free_order[j], a]
+        _lu_solve(lu, nb, kl, ku, ipiv, rhs)
+        size = 0.0
+        for j in range(nb):
+            size = max(size, abs(rhs[j]))
+        if not np.isfinite(size):
+            break
+        base[:] = X1
+        step[:] = rhs
+        base_norm, damping = norm, 1.0
+        for j in range(free_order.shape[0]):
+            for a in range(3):
+                X1[free_order[j], a] += rhs[3 * j + a]
+        counters[1] += 1
+        rho = size / previous if previous > 0.0 else -1.0
+        if (fresh and size <= increment_tolerance) or (
+                0.0 <= rho < 1.0 and size * rho / (1 - rho) <= increment_tolerance):
+            # the reactions need only the end rows: evaluate the two end elements
+            _point(X1, x_hist, v_hist, c0, V1, A1)
+            rows[:] = 0.0
+            _assemble_loop(X1, V1, A1, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension,
+                           mass, bed, plane, gap, normal, grad_gap, dnormal, c0, c0 * c0, False, rows, band2,
+                           kl, ku, last, vec, blk, Re, Ke, M, u, end_elements)
+            counters[2] += 1
+            return True
+        fresh = not reuse or rho > contraction
+        previous = size
+    lu_key[0] = np.nan
+    return False
+
+
+@njit(cache=True)
+def bdf2_steps(kernel, state, history, times, fairlead, anchor, settings, lu, ipiv, lu_key, forces,
+               counters):
+    """BDF2 steps to ``times`` (m,) in turn, the fairlead at ``fairlead`` (m, 3) and the anchor at
+    ``anchor`` (3,). Returns (status, k): DONE with k = m, or FAILED / TOO_LONG at step k, the
+    state being that after step k - 1.
+
+    kernel: the fused evaluator's arrays (``Marcher.kernel``); state: (X, V, A, Xp, Vp,
+    prediction, rows), each (N, 3), updated in place (Xp, Vp: the step before's; rows: M A + G
+    with only the anchor and fairlead rows evaluated); history: [t, h of the step before (0 at
+    the start), the last step (0 if none)], updated; settings: [tolerance, increment tolerance,
+    residual scale, max iterations, max growth of a step over the last one, modified Newton
+    (0 or 1), contraction limit, smallest line-search damping]; lu (n (2 kl + ku + 1),) (see ``_lu_banded``), ipiv (n,), lu_key (1,):
+    modified Newton's factors and the c0 they belong to (NaN: none), kept between calls;
+    forces (m, 2, 3): the line's forces on fairlead and anchor after each step; counters:
+    [steps, newton iterations, residual evaluations, tangents, LU factorisations], added to.
+    A step whose modified Newton fails is retried once from its start with a fresh tangent.
+    """
+    fairlead_node, anchor_node = kernel[24], kernel[23]
+    X, V, A, Xp, Vp, prediction, rows = state
+    N = X.shape[0]
+    nloc = kernel[0].shape[1]
+    rhs, step = np.empty(ipiv.shape[0]), np.empty(ipiv.shape[0])
+    band = np.zeros(lu.shape[0])
+    base = np.empty((N, 3))
+    X1, V1, A1, guess = np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3))
+    x_hist, v_hist = np.empty((N, 3)), np.empty((N, 3))
+    scratch = (np.zeros((7, 3)), np.zeros((4, 3, 3)), np.zeros((nloc, 3)), np.zeros((nloc, 3, nloc, 3)),
+               np.zeros((12, 3, 3)), np.zeros((12, 3)))
+    max_growth = settings[4]
+    tries = 2 if settings[5] > 0.0 else 1
+    for k in range(times.shape[0]):
+        t, h_before, last_h = history[0], history[1], history[2]
+        h = times[k] - t
+        if last_h > 0.0 and h > max_growth * last_h:
+            return TOO_LONG, k
+        start = h_before == 0.0
+        if start:  # backward Euler to start (BDF2.coefficients)
+            c0, c1, c2 = 1.0 / h, -1.0 / h, 0.0
+        else:
+            w = h / h_before
+            c0, c1, c2 = (1 + 2 * w) / ((1 + w) * h), -(1 + w) / h, w * w / ((1 + w) * h)
+        for i in range(N):
+            for a in range(3):
+                x_hist[i, a] = c1 * X[i, a] + c2 * (X[i, a] if start else Xp[i, a])
+                v_hist[i, a] = c1 * V[i, a] + c2 * (V[i, a] if start else Vp[i, a])
+                guess[i, a] = X[i, a] + h * V[i, a] + 0.5 * h * h * A[i, a]  # Integrator.predict
+        for a in range(3):
+            guess[fairlead_node, a] = fairlead[k, a]
+            guess[anchor_node, a] = anchor[a]
+        converged = False
+        for _ in range(tries):
+            X1[:] = guess
+            converged = _newton(kernel, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key,
+                                rhs, base, step, scratch, settings, counters)
+            if converged:
+                break
+        if not converged:
+            return FAILED, k
+        prediction[:] = guess
+        Xp[:] = X
+        Vp[:] = V
+        X[:] = X1
+        V[:] = V1
+        A[:] = A1
+        history[0], history[1], history[2] = times[k], h, h
+        for a in range(3):
+            forces[k, 0, a] = -rows[fairlead_node, a]
+            forces[k, 1, a] = -rows[anchor_node, a]
+        counters[0] += 1
+    return DONE, times.shape[0]
+
+
+class Marcher:
+    """Runs a ``BDF2`` integrator's steps through ``bdf2_steps``; built by ``for_integrator``."""
+
+    def __init__(self, integ):
+        fem, ev = integ.fem, integ.fused
+        gap, normal, grad_gap, dnormal = ev.unused
+        ends = np.unique(np.flatnonzero(np.isin(ev.dofs, (fem.anchor_dof, fem.fairlead_dof)).any(axis=1)))
+        self.kernel = (ev.dofs, ev.position, ev.full.phi, ev.full.dphi, ev.full.dx, ev.reduced.phi,
+                       ev.reduced.dphi, ev.reduced.dx, ev.params, ev.tension, ev.mass, ev.bed, ev.plane,
+                       gap, normal, grad_gap, dnormal, ev.kl, ev.ku, fem.free_dofs.astype(np.int64),
+                       ev.free_order.astype(np.int64), np.arange(fem.n_elements, dtype=np.int64),
+                       ends.astype(np.int64), int(fem.anchor_dof), int(fem.fairlead_dof))
+        self.anchor = np.asarray(integ.system.line.anchor, dtype=float)
+        self.settings = np.array([integ.tolerance, integ.increment_tolerance, integ.scale,
+                                  integ.max_iterations, np.inf, float(integ.reuse_jacobian),
+                                  integ.CONTRACTION, integ.MIN_DAMPING])
+        n = 3 * (fem.n_dofs - 2)
+        self.lu = np.zeros(n * (2 * ev.kl + ev.ku + 1))  # LAPACK's column-major band, flat
+        self.ipiv = np.zeros(n, dtype=np.int64)
+        self.lu_key = np.full(1, np.nan)
+
+    @classmethod
+    def for_integrator(cls, integ):
+        """A marcher for ``integ`` when it evaluates with the fused kernel on a plane seabed;
+        None otherwise (the per-step Python path applies)."""
+        ev = integ.fused
+        if ev is None or not ev.plane.size:
+            return None
+        return cls(integ)
+
+    def run(self, integ, times, fairlead, max_growth):
+        """Steps of ``integ`` to ``times`` (m,) with the fairlead at ``fairlead`` (m, 3); no step
+        longer than ``max_growth`` times the last. Returns (status, k, forces (m, 2, 3))."""
+        h_before, Xp, Vp = (0.0, integ.X, integ.V) if integ.previous is None else integ.previous
+        state = tuple(np.array(x, dtype=float) for x in (integ.X, integ.V, integ.A, Xp, Vp, integ.X,
+                                                         np.zeros_like(integ.X)))
+        history = np.array([integ.t, h_before, integ.last_h or 0.0])
+        settings = self.settings.copy()
+        settings[4] = max_growth
+        forces = np.empty((len(times), 2, 3))
+        counters = np.zeros(5, dtype=np.int64)
+        status, k = bdf2_steps(self.kernel, state, history, np.asarray(times, dtype=float),
+                               np.ascontiguousarray(fairlead, dtype=float), self.anchor, settings, self.lu,
+                               self.ipiv, self.lu_key, forces, counters)
+        integ.newton_iterations += int(counters[1])
+        integ.nfev += int(counters[2])
+        integ.njev += int(counters[3])
+        integ.nlu += int(counters[4])
+        if k > 0:
+            X, V, A, Xp, Vp, prediction, rows = state
+            integ.X, integ.V, integ.A, integ.prediction, integ.residual_rows = X, V, A, prediction, rows
+            integ.previous = (float(history[1]), Xp, Vp)
+            integ.t, integ.last_h = float(history[0]), float(history[2])
+        return status, k, forces

@@ -1,0 +1,151 @@
+"""Compiled BDF2 steps (cablefem.march) against the per-step Python path, and their pieces."""
+
+import numpy as np
+import pytest
+from scipy.linalg import solve_banded
+
+from cablefem.dynamics import BDF2, Integrator
+from cablefem.march import _lu_banded, _lu_solve
+from cablefem.motion import fairlead_motion
+from cablefem.run import StepControl, boundary_path, build_system, start_states
+from cablefem.scene import Motion
+from cablefem.scenes import flume_scene
+
+
+def integrator(scene, dt, compiled_steps, tolerance=1e-6, newton="auto", max_iterations=12):
+    line = scene.lines[0]
+    system = build_system(scene, line)
+    (X0,), _ = start_states(scene, systems=[system])
+    integ = BDF2(system, X0, boundary_path(scene, line), dt=dt, tolerance=tolerance, newton=newton,
+                 max_iterations=max_iterations)
+    if not compiled_steps:
+        integ.marcher = None  # the fused kernel per evaluation, Newton in Python
+    return integ
+
+
+@pytest.mark.parametrize("newton", ["full", "modified"])
+@pytest.mark.parametrize("order, elements, dt, motion, iterations", [
+    (1, 20, 0.04, "dynamic", 3),     # snap, 3 Newton iterations at most: steps fail and are halved
+    (2, 10, 0.1, "quasi-static", 12),
+    (3, 8, 0.02, "dynamic", 12),
+])
+def test_compiled_steps_equal_the_python_steps(order, elements, dt, motion, iterations, newton):
+    scene = flume_scene("flat", motion, elements, order, 8.0, dt)
+    times = StepControl(scene.solver, dt).times(0.0, 8.0)
+    runs = []
+    for compiled_steps in (True, False):
+        integ = integrator(scene, dt, compiled_steps, newton=newton, max_iterations=iterations)
+        assert (integ.marcher is not None) == compiled_steps
+        forces = integ.march(times)
+        runs.append((forces, integ.X, integ.V, integ.statistics()))
+    (f1, X1, V1, s1), (f2, X2, V2, s2) = runs
+    # the same arithmetic in another order: round-off apart, the same iterations and halvings
+    assert np.max(np.abs(f1 - f2)) <= 1e-9 * np.max(np.abs(f2))
+    assert np.max(np.abs(X1 - X2)) <= 1e-9
+    assert np.max(np.abs(V1 - V2)) <= 1e-7
+    assert s1 == s2
+    if iterations < 12:
+        assert s1["rejected"] > 0  # the halving path was exercised
+
+
+def test_compiled_steps_resume_after_a_failure_with_growth_capped():
+    """After Newton fails and a step is halved, the next steps grow back by at most 2x."""
+    scene = flume_scene("flat", "dynamic", 20, 1, 8.0, 0.04)
+    integ = integrator(scene, 0.04, True, max_iterations=3)
+    sizes = []
+    original = integ.attempt
+
+    def recording(h):
+        ok = original(h)
+        if ok:
+            sizes.append(h)
+        return ok
+
+    integ.attempt = recording
+    integ.march(StepControl(scene.solver, 0.04).times(0.0, 8.0))
+    assert integ.rejected > 0 and sizes
+    assert min(sizes) < 0.04  # halved attempts went through attempt() ...
+    assert integ.t == pytest.approx(8.0, abs=1e-12)  # ... and the run still lands on the end
+
+
+def test_banded_lu_with_pivoting_solves_like_scipy():
+    rng = np.random.default_rng(3)
+    n, kl, ku = 40, 5, 5
+    dense = np.zeros((n, n))
+    for i in range(n):
+        for j in range(max(0, i - kl), min(n, i + ku + 1)):
+            dense[i, j] = rng.standard_normal()
+    dense[np.arange(n), np.arange(n)] = 0.0  # no diagonal: every column needs a row swap
+    b = rng.standard_normal(n)
+    band = np.zeros((n, 2 * kl + ku + 1)).T  # column-major, LAPACK's layout
+    for j in range(n):
+        for i in range(max(0, j - ku), min(n, j + kl + 1)):
+            band[kl + ku + i - j, j] = dense[i, j]
+    expected = solve_banded((kl, ku), band[kl:], b)
+    x, pivots, scratch = b.copy(), np.zeros(n, dtype=np.int64), np.zeros(kl + 1)
+    flat = band.T.ravel()  # columns one after the other
+    assert _lu_banded(flat, n, kl, ku, pivots, scratch)
+    _lu_solve(flat, n, kl, ku, pivots, x)
+    assert np.max(np.abs(dense @ x - b)) <= 1e-10 * np.max(np.abs(b))
+    assert np.allclose(x, expected, rtol=1e-9, atol=1e-12)
+    singular = np.zeros(n * (2 * kl + ku + 1))
+    assert not _lu_banded(singular, n, kl, ku, pivots, scratch)
+
+
+@pytest.mark.parametrize("dt, stop", [(0.04, 1.0), (0.03, 1.0), (0.17, 0.5), (0.1, 0.1000001)])
+def test_fixed_step_times_land_on_the_stop_without_slivers(dt, stop):
+    scene = flume_scene("flat", "dynamic", 4, 1, 1.0, dt)
+    times = StepControl(scene.solver, dt).times(0.0, stop)
+    steps = np.diff(np.concatenate([[0.0], times]))
+    assert times[-1] == stop
+    assert np.all(steps <= dt * (1 + 1e-3) + 1e-15)
+    assert np.all(steps >= 0.5 * min(dt, stop) - 1e-15)  # never a sliver before the stop
+
+
+@pytest.mark.parametrize("motion", [
+    Motion(kind="harmonic", amplitude=(5.0, 1.0, -2.0), period=6.0, offset=(1.0, 0.0, 0.5), ramp=6.0),
+    Motion(kind="circular", radius=2.0, period=4.0, plane="xz", offset=(0.0, 1.0, 0.0), ramp=3.0),
+    Motion(kind="table", times=(0.0, 1.0, 4.0), positions=((0, 0, 0), (1, 2, 3), (-1, 0, 2)), ramp=0.5),
+    Motion(kind="fixed"),
+])
+def test_vectorised_motion_equals_the_scalar_one(motion):
+    times = np.linspace(-1.0, 8.0, 181)
+    together = fairlead_motion(motion, times)
+    one_by_one = [np.array([fairlead_motion(motion, t)[k] for t in times]) for k in range(3)]
+    for a, b in zip(together, one_by_one):
+        assert a.shape == (181, 3)
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-12)
+
+
+def test_table_motion_holds_its_ends_and_interpolates():
+    motion = Motion(kind="table", times=(0.0, 2.0), positions=((0, 0, 0), (2, 4, 6)))
+    d, v, a = fairlead_motion(motion, np.array([-1.0, 0.5, 3.0]))
+    np.testing.assert_allclose(d, [[0, 0, 0], [0.5, 1, 1.5], [2, 4, 6]])
+    np.testing.assert_allclose(v, [[0, 0, 0], [1, 2, 3], [0, 0, 0]])
+    assert not a.any()
+
+
+def test_compiled_steps_are_used_on_planes_only():
+    assert integrator(flume_scene("flat", "dynamic", 6, 2, 1.0, 0.05), 0.05, True).marcher is not None
+    steep = flume_scene("steep", "dynamic", 6, 2, 1.0, 0.05)
+    assert integrator(steep, 0.05, True).marcher is None  # a triangulated step: projected in numpy
+    reference = flume_scene("flat", "dynamic", 6, 2, 1.0, 0.05)
+    line = reference.lines[0]
+    system = build_system(reference, line)
+    X0 = start_states(reference, systems=[system])[0][0]
+    assert BDF2(system, X0, boundary_path(reference, line), dt=0.05, compiled=False).marcher is None
+
+
+def test_residual_line_search_stops_newton_cycling_in_snap_loads():
+    """Undamped Newton cycles between two friction/contact states in the snap-load case and the
+    step is halved; the Armijo line search converges instead (Integrator.newton)."""
+    scene = flume_scene("flat", "dynamic", 20, 2, 10.0, 0.04)
+    times = StepControl(scene.solver, 0.04).times(0.0, 10.0)
+    rejected = {}
+    for damping in (Integrator.MIN_DAMPING, 1.0):  # 1.0: no line search
+        integ = integrator(scene, 0.04, True)
+        integ.marcher.settings[7] = damping
+        integ.march(times)
+        rejected[damping] = integ.rejected
+    assert rejected[1.0] >= 3
+    assert rejected[Integrator.MIN_DAMPING] == 0
