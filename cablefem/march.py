@@ -27,9 +27,19 @@ import numpy as np
 from numba import njit
 
 from .fused import _assemble_loop
+from .geometry import DepthGrid, TriangulatedSurface
+from .geometry import _vertex_normal_jit as walk
+from .geometry.grid import _project as _grid_project
+from .geometry.triangulated import WALK_STEPS
 
-#: status of a run of steps: all taken, Newton failed at step k, step k grows too fast
-DONE, FAILED, TOO_LONG = 0, 1, 2
+#: status of a run of steps: all taken, Newton failed at step k, step k grows too fast, or the
+#: compiled walk on a triangulated seabed did not place a point (Python projects that step)
+DONE, FAILED, TOO_LONG, PROJECTION = 0, 1, 2, 3
+#: seabeds the loop projects itself: a plane (in the fused kernel), a depth grid, a triangulated
+#: surface (the compiled walk of ``_vertex_normal_jit``)
+PLANE, GRID, TRIANGULATED = 0, 1, 2
+#: what ``_newton`` returns
+_CONVERGED, _DIVERGED, _LOST = 0, 1, 2
 
 
 @njit(cache=True, _nrt=False)
@@ -90,6 +100,47 @@ def _lu_solve(lu, n, kl, ku, ipiv, rhs):
 
 
 @njit(cache=True)
+def _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal):
+    """Project the full quadrature points of X1 onto a grid or triangulated seabed into gap
+    (nel, nq), normal and grad_gap (3, nel, nq), dnormal (3, 3, nel, nq), as
+    ``FusedEvaluator.evaluate`` does through ``Seabed.project``; the walk's warm start moves on
+    to this call. Returns the number of points the walk did not place (-1: moved too far)."""
+    (kind, gx, gy, gz, rows, across, safe, size, typical, origin, start, unheld, start_h, triangle, sth,
+     xyz, out) = projector
+    nel, nloc = dofs.shape
+    nq = phi.shape[2]
+    for e in range(nel):
+        for g in range(nq):
+            p = e * nq + g
+            for a in range(3):
+                acc = 0.0
+                for l in range(nloc):
+                    acc += phi[l, e, g] * X1[dofs[e, l], a]
+                xyz[a, p] = acc
+    if kind == GRID:
+        _grid_project(xyz, gx, gy, gz, True, out)
+    else:
+        lost = walk.project(xyz, origin, start, start_h, unheld, rows, across, safe, size, typical,
+                            WALK_STEPS, True, walk.EVERYTHING, triangle, sth, out)
+        if lost != 0:
+            return lost
+        origin[:] = xyz
+        start[:] = triangle
+        start_h[:] = sth[2]
+        unheld[:] = False
+    for e in range(nel):
+        for g in range(nq):
+            p = e * nq + g
+            gap[e, g] = out[0, p]
+            for a in range(3):
+                normal[a, e, g] = out[1 + a, p]
+                grad_gap[a, e, g] = out[7 + a, p]
+                for b in range(3):
+                    dnormal[a, b, e, g] = out[10 + 3 * a + b, p]
+    return 0
+
+
+@njit(cache=True)
 def _point(X1, x_hist, v_hist, c0, V1, A1):
     """V and A of BDF2 at positions X1: V = c0 X1 + x_hist, A = c0 V + v_hist."""
     for i in range(X1.shape[0]):
@@ -99,8 +150,8 @@ def _point(X1, x_hist, v_hist, c0, V1, A1):
 
 
 @njit(cache=True)
-def _newton(kernel, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key, rhs, base, step,
-            scratch, settings, counters):
+def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key, rhs, base,
+            step, scratch, settings, counters):
     """Newton on the step residual M A + G = 0 from X1 (updated in place), as
     ``Integrator.newton``: full (a fresh tangent each iteration) or, with settings[5] > 0,
     modified (the LU factors ``lu``/``ipiv`` kept across iterations and steps while the step's
@@ -108,7 +159,8 @@ def _newton(kernel, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key
     ``band`` (the size of ``lu``) takes a fresh tangent before it is factored into ``lu``; a step
     that does not reduce the residual norm is halved down to settings[7] (Armijo), from
     ``base`` (N, 3) along ``step`` (n,) (scratch).
-    Returns True when converged, with V1, A1 and the end rows of ``rows`` at the solution."""
+    Returns _CONVERGED, with V1, A1 and the end rows of ``rows`` at the solution, _DIVERGED, or
+    _LOST when the seabed projection (``projector``, see ``bdf2_steps``) could not place a point."""
     (dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass, bed, plane, gap,
      normal, grad_gap, dnormal, kl, ku, free_nodes, free_order, all_elements, end_elements,
      anchor_node, fairlead_node) = kernel
@@ -123,14 +175,19 @@ def _newton(kernel, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key
     fresh = not reuse or lu_key[0] != c0
     previous = -1.0  # none yet
     base_norm, damping, min_damping = -1.0, 1.0, settings[7]  # base_norm < 0: no step taken yet
+    projected = projector[0] != PLANE
     for _ in range(int(settings[3])):
         _point(X1, x_hist, v_hist, c0, V1, A1)
+        if projected and _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal) != 0:
+            return _LOST
+        # the tangent with the residual unless the last residual promises convergence (Newton)
+        with_tangent = fresh and (base_norm < 0.0 or base_norm > np.sqrt(tolerance))
         rows[:] = 0.0
-        if fresh:
+        if with_tangent:
             band[:] = 0.0
         _assemble_loop(X1, V1, A1, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension,
-                       mass, bed, plane, gap, normal, grad_gap, dnormal, c0, c0 * c0, fresh, rows, band2,
-                       kl, ku, last, vec, blk, Re, Ke, M, u, all_elements)
+                       mass, bed, plane, gap, normal, grad_gap, dnormal, c0, c0 * c0, with_tangent, rows,
+                       band2, kl, ku, last, vec, blk, Re, Ke, M, u, all_elements)
         counters[2] += 1
         norm = 0.0
         for i in free_nodes:
@@ -138,7 +195,7 @@ def _newton(kernel, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key
                 norm += rows[i, a] * rows[i, a]
         norm = np.sqrt(norm) / scale
         if norm <= tolerance and previous >= 0.0:
-            return True
+            return _CONVERGED
         if base_norm >= 0.0 and damping > min_damping and not norm <= (1 - 1e-4 * damping) * base_norm:
             damping *= 0.5
             X1[:] = base
@@ -149,6 +206,13 @@ def _newton(kernel, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key
         if not np.isfinite(norm):
             break
         if fresh:
+            if not with_tangent:
+                rows[:] = 0.0
+                band[:] = 0.0
+                _assemble_loop(X1, V1, A1, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension,
+                               mass, bed, plane, gap, normal, grad_gap, dnormal, c0, c0 * c0, True, rows,
+                               band2, kl, ku, last, vec, blk, Re, Ke, M, u, all_elements)
+                counters[2] += 1
             counters[3] += 1
             lu[:] = band
             lu_key[0] = np.nan
@@ -177,26 +241,29 @@ def _newton(kernel, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key
                 0.0 <= rho < 1.0 and size * rho / (1 - rho) <= increment_tolerance):
             # the reactions need only the end rows: evaluate the two end elements
             _point(X1, x_hist, v_hist, c0, V1, A1)
+            if projected and _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal) != 0:
+                return _LOST
             rows[:] = 0.0
             _assemble_loop(X1, V1, A1, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension,
                            mass, bed, plane, gap, normal, grad_gap, dnormal, c0, c0 * c0, False, rows, band2,
                            kl, ku, last, vec, blk, Re, Ke, M, u, end_elements)
             counters[2] += 1
-            return True
+            return _CONVERGED
         fresh = not reuse or rho > contraction
         previous = size
     lu_key[0] = np.nan
-    return False
+    return _DIVERGED
 
 
 @njit(cache=True)
-def bdf2_steps(kernel, state, history, times, fairlead, anchor, settings, lu, ipiv, lu_key, forces,
-               counters):
+def bdf2_steps(kernel, projector, state, history, times, fairlead, anchor, settings, lu, ipiv, lu_key,
+               forces, counters):
     """BDF2 steps to ``times`` (m,) in turn, the fairlead at ``fairlead`` (m, 3) and the anchor at
     ``anchor`` (3,). Returns (status, k): DONE with k = m, or FAILED / TOO_LONG at step k, the
     state being that after step k - 1.
 
-    kernel: the fused evaluator's arrays (``Marcher.kernel``); state: (X, V, A, Xp, Vp,
+    kernel: the fused evaluator's arrays (``Marcher.kernel``); projector: (kind, grid x, y, z,
+    the walk's tables and warm start, scratch) (``Marcher.projector``); state: (X, V, A, Xp, Vp,
     prediction, rows), each (N, 3), updated in place (Xp, Vp: the step before's; rows: M A + G
     with only the anchor and fairlead rows evaluated); history: [t, h of the step before (0 at
     the start), the last step (0 if none)], updated; settings: [tolerance, increment tolerance,
@@ -239,14 +306,16 @@ def bdf2_steps(kernel, state, history, times, fairlead, anchor, settings, lu, ip
         for a in range(3):
             guess[fairlead_node, a] = fairlead[k, a]
             guess[anchor_node, a] = anchor[a]
-        converged = False
+        outcome = _DIVERGED
         for _ in range(tries):
             X1[:] = guess
-            converged = _newton(kernel, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key,
-                                rhs, base, step, scratch, settings, counters)
-            if converged:
+            outcome = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv,
+                              lu_key, rhs, base, step, scratch, settings, counters)
+            if outcome != _DIVERGED:
                 break
-        if not converged:
+        if outcome == _LOST:
+            return PROJECTION, k
+        if outcome == _DIVERGED:
             return FAILED, k
         prediction[:] = guess
         Xp[:] = X
@@ -265,15 +334,23 @@ def bdf2_steps(kernel, state, history, times, fairlead, anchor, settings, lu, ip
 class Marcher:
     """Runs a ``BDF2`` integrator's steps through ``bdf2_steps``; built by ``for_integrator``."""
 
-    def __init__(self, integ):
+    def __init__(self, integ, kind):
         fem, ev = integ.fem, integ.fused
-        gap, normal, grad_gap, dnormal = ev.unused
+        self.seabed, self.kind = integ.system.seabed, kind
+        nel, nq = ev.full.dx.shape
+        if kind == PLANE:  # the kernel computes the gap itself
+            gap, normal, grad_gap, dnormal = ev.unused
+        else:  # written by ``_project`` each evaluation
+            gap, normal, grad_gap, dnormal = (np.zeros((nel, nq)), np.zeros((3, nel, nq)), np.zeros((3, nel, nq)),
+                                              np.zeros((3, 3, nel, nq)))
         ends = np.unique(np.flatnonzero(np.isin(ev.dofs, (fem.anchor_dof, fem.fairlead_dof)).any(axis=1)))
         self.kernel = (ev.dofs, ev.position, ev.full.phi, ev.full.dphi, ev.full.dx, ev.reduced.phi,
                        ev.reduced.dphi, ev.reduced.dx, ev.params, ev.tension, ev.mass, ev.bed, ev.plane,
                        gap, normal, grad_gap, dnormal, ev.kl, ev.ku, fem.free_dofs.astype(np.int64),
                        ev.free_order.astype(np.int64), np.arange(fem.n_elements, dtype=np.int64),
                        ends.astype(np.int64), int(fem.anchor_dof), int(fem.fairlead_dof))
+        self.points = nel * nq
+        self.value_op = fem.full.value_op  # positions at the full quadrature points
         self.anchor = np.asarray(integ.system.line.anchor, dtype=float)
         self.settings = np.array([integ.tolerance, integ.increment_tolerance, integ.scale,
                                   integ.max_iterations, np.inf, float(integ.reuse_jacobian),
@@ -285,12 +362,33 @@ class Marcher:
 
     @classmethod
     def for_integrator(cls, integ):
-        """A marcher for ``integ`` when it evaluates with the fused kernel on a plane seabed;
-        None otherwise (the per-step Python path applies)."""
-        ev = integ.fused
-        if ev is None or not ev.plane.size:
+        """A marcher for ``integ`` when it evaluates with the fused kernel on a plane, a depth grid
+        or a triangulated surface with compiled projections; None otherwise (the per-step Python
+        path applies)."""
+        ev, seabed = integ.fused, integ.system.seabed
+        if ev is None:
             return None
-        return cls(integ)
+        if ev.plane.size:
+            return cls(integ, PLANE)
+        if isinstance(seabed, DepthGrid) and seabed.compiled:
+            return cls(integ, GRID)
+        if isinstance(seabed, TriangulatedSurface) and seabed.compiled:
+            return cls(integ, TRIANGULATED)
+        return None
+
+    def projector(self, X):
+        """The projector tuple of ``bdf2_steps`` for state X (N, 3): the seabed's arrays, the
+        walk's warm start from the seabed's last call at these points, and scratch."""
+        n = self.points
+        zero1, zero2 = np.zeros(1), np.zeros((1, 1))
+        grid = (self.seabed.x, self.seabed.y, self.seabed.z) if self.kind == GRID else (zero1, zero1, zero2)
+        if self.kind == TRIANGULATED:
+            walker = self.seabed.walk_start(self.value_op @ X)
+        else:  # unused, typed as the walk's own
+            walker = (zero2, np.zeros((1, 3), dtype=np.int64), zero1, zero1, 0.0, np.zeros((3, n)),
+                      np.zeros(n, dtype=np.int64), np.zeros(n, dtype=bool), np.zeros(n))
+        return ((self.kind,) + grid + walker
+                + (np.zeros(n, dtype=np.int64), np.zeros((3, n)), np.zeros((3, n)), np.zeros((walk.OUTPUTS, n))))
 
     def run(self, integ, times, fairlead, max_growth):
         """Steps of ``integ`` to ``times`` (m,) with the fairlead at ``fairlead`` (m, 3); no step
@@ -303,9 +401,13 @@ class Marcher:
         settings[4] = max_growth
         forces = np.empty((len(times), 2, 3))
         counters = np.zeros(5, dtype=np.int64)
-        status, k = bdf2_steps(self.kernel, state, history, np.asarray(times, dtype=float),
+        projector = self.projector(integ.X)
+        status, k = bdf2_steps(self.kernel, projector, state, history, np.asarray(times, dtype=float),
                                np.ascontiguousarray(fairlead, dtype=float), self.anchor, settings, self.lu,
                                self.ipiv, self.lu_key, forces, counters)
+        if self.kind == TRIANGULATED and counters[2]:  # the walk's last call: the next one starts there
+            origin, triangle, h = projector[9], projector[10], projector[12]
+            self.seabed.walk_end(origin, triangle, h)
         integ.newton_iterations += int(counters[1])
         integ.nfev += int(counters[2])
         integ.njev += int(counters[3])

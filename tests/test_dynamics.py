@@ -193,15 +193,15 @@ def test_run_stopped_early_leaves_valid_outputs(tmp_path, monkeypatch):
 
     scene = default_scene()
     calls = {"n": 0}
-    original = dynamics.BDF2.step
+    original = dynamics.BDF2.march
 
-    def interrupted(self, dt=None):
+    def interrupted(self, times):  # run_scene marches from one output time (every 0.1 s) to the next
         calls["n"] += 1
-        if calls["n"] > 30:
+        if calls["n"] > 3:
             raise KeyboardInterrupt
-        return original(self, dt)
+        return original(self, times)
 
-    monkeypatch.setattr(dynamics.BDF2, "step", interrupted)
+    monkeypatch.setattr(dynamics.BDF2, "march", interrupted)
     with pytest.raises(KeyboardInterrupt):
         run_scene(scene, str(tmp_path), duration=10.0, dt=0.01)
     times, frames = read_collection(tmp_path / f"{scene.name}.pvd")

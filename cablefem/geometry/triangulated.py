@@ -349,6 +349,32 @@ class TriangulatedSurface(Seabed):
         self._remember(state, points, triangle, beyond, sth[2], xyz=xyz)
         return triangle, sth, out
 
+    def walk_start(self, points):
+        """What a compiled caller running ``_vertex_normal_jit.project`` itself needs for points
+        (n, 3) [m] (``cablefem.march``): the surface's tables (rows, neighbours, safe radii,
+        triangle sizes, typical size) and the warm start of the remembered call nearest to them
+        (origin (3, n), start triangles (n,), unheld (n,), heights (n,)), or a cold start from
+        the nearest centroids. ``walk_end`` hands the last call back."""
+        points = _checked(points)
+        if self._safe is None:
+            self._safe = np.ascontiguousarray(self._warm_tables()[vn.W_SAFE])
+        state = self._recall(points)[0]
+        if state is None:
+            warm = (points.T.copy(), self._nearest(points, 1)[:, 0].astype(np.int64),
+                    np.zeros(len(points), dtype=bool), np.full(len(points), np.nan))
+        else:
+            warm = (_component_first(state).copy(), state[1].astype(np.int64), state[2].copy(),
+                    np.array(state[3], dtype=float))
+        return (self._rows, self._across, self._safe, self._size, self._typical) + warm
+
+    def walk_end(self, xyz, triangle, h):
+        """Remember a compiled caller's last call: points xyz (3, n) [m] found in ``triangle``
+        (n,) at heights h (n,) [m], every point held (see ``walk_start``)."""
+        xyz = np.array(xyz, dtype=float)
+        points = xyz.T
+        self._remember(self._recall(points)[0], points, np.array(triangle), np.zeros(len(points), dtype=bool),
+                       np.array(h, dtype=float), xyz=xyz)
+
     def _warm(self, points, state, derivatives):
         """``vn.project_warm`` of points (n, 3) [m] from the remembered call ``state``, kept as
         the next start when every point is still in its triangle; None otherwise."""
