@@ -7,20 +7,23 @@ the compiled work itself on the small meshes that the coarse accuracy levels
 use (verification/work_precision/README.md). This module runs whole steps,
 and runs of steps, without returning to Python: the same variable-step BDF2
 (``cablefem.dynamics.BDF2``, desire2023 Sec. 2.1.2: backward Euler to start,
-then y' ~ c0 y_{n+1} + c1 y_n + c2 y_{n-1} on X and V) and the same full Newton
-with the same convergence tests as ``Integrator.newton``, line for line, so
-both paths give the same numbers to round-off (tests/test_march.py).
+then y' ~ c0 y_{n+1} + c1 y_n + c2 y_{n-1} on X and V) and the same Newton
+(full or modified, with the residual line search) with the same convergence
+tests as ``Integrator.newton``, line for line, so both paths give the same
+numbers to round-off (tests/test_march.py).
 
 The banded LU is LAPACK's unblocked algorithm (dgbtf2/dgbtrs) written out
 here: numba cannot cache a function that calls LAPACK through a ctypes pointer,
 and compiling on every start would cost ~30 s. At the bandwidths of a line
 (kl = ku = 3 (order + 1) - 1) the unblocked algorithm is what dgbtrf runs anyway.
 
-Full Newton and modified Newton (LU factors kept across iterations and steps,
-``[solver] newton``) are both here. It applies to a line on a plane seabed
-(where the kernel computes the gap itself) whose loads the fused kernel knows;
-other seabeds keep the per-step Python path, which projects onto the surface
-in numpy each iteration.
+The seabed is projected in the loop too: a plane by the fused kernel itself,
+a ``DepthGrid`` by its compiled bilinear projection, a ``TriangulatedSurface``
+by its compiled walk (``_vertex_normal_jit.project``), which starts where the
+seabed's last call for these points ended and hands its last call back. When
+the walk cannot place a point (it moved beyond its triangle's neighbours), the
+loop stops and that step projects in Python, whose search finds it. Other
+seabeds, and loads the fused kernel does not know, keep the per-step Python path.
 """
 
 import numpy as np

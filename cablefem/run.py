@@ -184,6 +184,7 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
         status = f"stopped: {error}"
         raise
     finally:
+        frames.close()
         if bar is not None:
             bar.close()
         stats = [integ.statistics() for integ in integrators]

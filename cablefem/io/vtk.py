@@ -8,6 +8,7 @@ written so far.
 
 import os
 import tempfile
+import time
 from xml.sax.saxutils import quoteattr
 
 import meshio
@@ -51,29 +52,42 @@ def polyline_mesh(lines):
 
 
 class TimeSeriesWriter:
-    """Frames ``<name>_<k>.vtu`` and the collection ``<name>.pvd`` in ``folder``."""
+    """Frames ``<name>_<k>.vtu`` and the collection ``<name>.pvd`` in ``folder``.
 
-    def __init__(self, folder, name):
+    The collection is rewritten (atomically) when a frame comes at least ``refresh`` seconds of
+    wall time after the last rewrite, and by ``close``: a run stopped in any way that lets
+    ``close`` run lists every frame, one killed outright lists those up to the last rewrite.
+    (Rewriting it for each of 600 frames cost 0.8 s of a 5 s ``cablefem run``.)"""
+
+    def __init__(self, folder, name, refresh=1.0):
         self.folder = folder
         self.name = name
+        self.refresh = refresh
         self.frames = []  # (time, file name)
+        self._rows = []  # their lines in the collection, formatted once
         os.makedirs(folder, exist_ok=True)
         self.path = os.path.join(folder, f"{name}.pvd")
         self._write_collection()
 
     def write(self, t, mesh):
-        """Write one frame at time t [s] and update the collection."""
+        """Write one frame at time t [s] (and the collection, if it is due)."""
         file_name = f"{self.name}_{len(self.frames):05d}.vtu"
         meshio.write(os.path.join(self.folder, file_name), mesh)
         self.frames.append((float(t), file_name))
+        self._rows.append(f'    <DataSet timestep="{float(t)!r}" group="" part="0" file={quoteattr(file_name)}/>\n')
+        if time.monotonic() - self._written >= self.refresh:
+            self._write_collection()
+
+    def close(self):
+        """Write the collection with every frame."""
         self._write_collection()
 
     def _write_collection(self):
-        rows = "".join(f'    <DataSet timestep="{t!r}" group="" part="0" file={quoteattr(f)}/>\n'
-                       for t, f in self.frames)
+        rows = "".join(self._rows)
         write_atomic(self.path, '<?xml version="1.0"?>\n'
                      '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n'
                      f"  <Collection>\n{rows}  </Collection>\n</VTKFile>\n")
+        self._written = time.monotonic()
 
 
 def read_collection(path):
