@@ -103,11 +103,12 @@ def _lu_solve(lu, n, kl, ku, ipiv, rhs):
 
 
 @njit(cache=True)
-def _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal):
+def _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal, derivatives):
     """Project the full quadrature points of X1 onto a grid or triangulated seabed into gap
-    (nel, nq), normal and grad_gap (3, nel, nq), dnormal (3, 3, nel, nq), as
-    ``FusedEvaluator.evaluate`` does through ``Seabed.project``; the walk's warm start moves on
-    to this call. Returns the number of points the walk did not place (-1: moved too far)."""
+    (nel, nq), normal and, with ``derivatives`` (a tangent needs them), grad_gap (3, nel, nq) and
+    dnormal (3, 3, nel, nq), as ``FusedEvaluator.evaluate`` does through ``Seabed.project``; the
+    walk's warm start moves on to this call. Returns the number of points the walk did not
+    place (-1: moved too far)."""
     (kind, gx, gy, gz, rows, across, safe, size, typical, origin, start, unheld, start_h, triangle, sth,
      xyz, out) = projector
     nel, nloc = dofs.shape
@@ -123,8 +124,9 @@ def _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal):
     if kind == GRID:
         _grid_project(xyz, gx, gy, gz, True, out)
     else:
+        mode = walk.EVERYTHING if derivatives else walk.GAP_AND_DIRECTION
         lost = walk.project(xyz, origin, start, start_h, unheld, rows, across, safe, size, typical,
-                            WALK_STEPS, True, walk.EVERYTHING, triangle, sth, out)
+                            WALK_STEPS, True, mode, triangle, sth, out)
         if lost != 0:
             return lost
         origin[:] = xyz
@@ -137,9 +139,10 @@ def _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal):
             gap[e, g] = out[0, p]
             for a in range(3):
                 normal[a, e, g] = out[1 + a, p]
-                grad_gap[a, e, g] = out[7 + a, p]
-                for b in range(3):
-                    dnormal[a, b, e, g] = out[10 + 3 * a + b, p]
+                if derivatives:
+                    grad_gap[a, e, g] = out[7 + a, p]
+                    for b in range(3):
+                        dnormal[a, b, e, g] = out[10 + 3 * a + b, p]
     return 0
 
 
@@ -181,10 +184,11 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
     projected = projector[0] != PLANE
     for _ in range(int(settings[3])):
         _point(X1, x_hist, v_hist, c0, V1, A1)
-        if projected and _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal) != 0:
-            return _LOST
         # the tangent with the residual unless the last residual promises convergence (Newton)
         with_tangent = fresh and (base_norm < 0.0 or base_norm > np.sqrt(tolerance))
+        if projected and _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal,
+                                  with_tangent) != 0:
+            return _LOST
         rows[:] = 0.0
         if with_tangent:
             band[:] = 0.0
@@ -210,6 +214,8 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
             break
         if fresh:
             if not with_tangent:
+                if projected:  # the projection's derivatives, at the same points
+                    _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal, True)
                 rows[:] = 0.0
                 band[:] = 0.0
                 _assemble_loop(X1, V1, A1, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension,
@@ -244,7 +250,8 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
                 0.0 <= rho < 1.0 and size * rho / (1 - rho) <= increment_tolerance):
             # the reactions need only the end rows: evaluate the two end elements
             _point(X1, x_hist, v_hist, c0, V1, A1)
-            if projected and _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal) != 0:
+            if projected and _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal,
+                                      False) != 0:
                 return _LOST
             rows[:] = 0.0
             _assemble_loop(X1, V1, A1, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension,
