@@ -278,13 +278,14 @@ def bdf2_steps(kernel, projector, state, history, times, fairlead, anchor, setti
     with only the anchor and fairlead rows evaluated); history: [t, h of the step before (0 at
     the start), the last step (0 if none)], updated; settings: [tolerance, increment tolerance,
     residual scale, max iterations, max growth of a step over the last one, modified Newton
-    (0 or 1), contraction limit, smallest line-search damping]; lu (n (2 kl + ku + 1),) (see ``_lu_banded``), ipiv (n,), lu_key (1,):
-    modified Newton's factors and the c0 they belong to (NaN: none), kept between calls;
+    (0 or 1), contraction limit, smallest line-search damping]; lu (n (2 kl + ku + 1),) (see
+    ``_lu_banded``), ipiv (n,), lu_key (1,): modified Newton's factors and the c0 they belong to
+    (NaN: none), kept between calls;
     forces (m, 2, 3): the line's forces on fairlead and anchor after each step; counters:
     [steps, newton iterations, residual evaluations, tangents, LU factorisations], added to.
     A step whose modified Newton fails is retried once from its start with a fresh tangent.
     """
-    fairlead_node, anchor_node = kernel[24], kernel[23]
+    anchor_node, fairlead_node = kernel[23], kernel[24]  # the kernel tuple's last two
     X, V, A, Xp, Vp, prediction, rows = state
     N = X.shape[0]
     nloc = kernel[0].shape[1]

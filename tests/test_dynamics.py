@@ -242,3 +242,20 @@ def test_adaptive_steps_follow_their_tolerance(tmp_path):
     # a hundred times tighter: more (smaller) steps and a smaller error (BDF2: ~ tol^(2/3))
     assert s_tight["steps"] > 2 * s_loose["steps"]
     assert e_tight < e_loose / 3, (e_loose, e_tight)
+
+
+def test_collection_lists_every_frame_once_closed(tmp_path):
+    """The .pvd is rewritten at most every ``refresh`` seconds while frames come, and in full
+    by ``close``; what it lists is always a valid collection."""
+    from cablefem.io.vtk import TimeSeriesWriter, polyline_mesh, read_collection
+
+    writer = TimeSeriesWriter(str(tmp_path), "run", refresh=3600.0)
+    line = {"points": np.array([[0.0, 0, 0], [1.0, 0, 0]]), "tension": np.array([1.0, 2.0])}
+    for k in range(5):
+        writer.write(0.1 * k, polyline_mesh([line]))
+    times, _ = read_collection(tmp_path / "run.pvd")
+    assert len(times) == 0  # not due yet: the collection written at the start, empty
+    writer.close()
+    times, files = read_collection(tmp_path / "run.pvd")
+    np.testing.assert_allclose(times, [0.0, 0.1, 0.2, 0.3, 0.4])
+    assert all(os.path.isfile(f) for f in files)

@@ -74,7 +74,8 @@ class TimeSeriesWriter:
         file_name = f"{self.name}_{len(self.frames):05d}.vtu"
         meshio.write(os.path.join(self.folder, file_name), mesh)
         self.frames.append((float(t), file_name))
-        self._rows.append(f'    <DataSet timestep="{float(t)!r}" group="" part="0" file={quoteattr(file_name)}/>\n')
+        self._rows.append(f'    <DataSet timestep="{float(t)!r}" group="" part="0" '
+                          f'file={quoteattr(file_name)}/>\n')
         if time.monotonic() - self._written >= self.refresh:
             self._write_collection()
 
