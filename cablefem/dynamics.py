@@ -75,7 +75,8 @@ class Integrator:
         self.nfev = self.njev = self.nlu = 0
         self.last_h = None  # the last accepted step [s]
         self.newton_iterations = self.steps = self.rejected = 0
-        self.residual_rows = None  # full residual M A + G at the current state, (N, 3)
+        self.residual_rows = None  # M A + G at the current state, (N, 3); compiled steps may fill only
+        # the anchor and fairlead rows (the reactions), leaving the others zero
         self._lu, self._lu_factors = None, None
         self.fused = None
         if compiled and not lumped:
