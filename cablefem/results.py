@@ -96,20 +96,40 @@ def sample_arc_lengths(system, per_element=None):
     return np.append((nodes[:-1, None] + np.diff(nodes)[:, None] * fractions).ravel(), nodes[-1])
 
 
-def line_fields(system, X, V=None, s=None):
+class LineSampler:
+    """The basis of one line's FEM at fixed arc lengths s (n,) [m] (default: each element split
+    into ``order`` pieces), evaluated once: frames of a run sample the same points every time."""
+
+    def __init__(self, system, s=None):
+        fem = system.fem
+        self.system = system
+        self.s = sample_arc_lengths(system) if s is None else np.asarray(s, dtype=float)
+        self.values, self.gradients = fem._local_basis(self.s)  # (n, nloc) each
+        self.element = fem._locate(self.s)[0]
+        self.dofs = fem.element_dofs[self.element]  # (n, nloc)
+
+    def evaluate(self, X):
+        """X (N, 3) at the sample points, (n, 3)."""
+        return np.einsum("nl,nlc->nc", self.values, X[self.dofs])
+
+    def derivative(self, X):
+        """dX/ds (N, 3) at the sample points, (n, 3)."""
+        return np.einsum("nl,nlc->nc", self.gradients, X[self.dofs])
+
+
+def line_fields(system, X, V=None, s=None, sampler=None):
     """Point data of a line for a VTK frame: positions and, per point, tension [N], strain,
-    velocity [m/s], seabed gap d_G [m] and contact force per unit length [N/m]."""
-    s = sample_arc_lengths(system) if s is None else s
-    fem = system.fem
-    points = fem.evaluate(X, s)
-    dr = fem.derivative(X, s)
-    stretch = np.linalg.norm(dr, axis=1)
-    element = fem._locate(s)[0]
+    velocity [m/s], seabed gap d_G [m] and contact force per unit length [N/m]; at ``s`` or at
+    a ``LineSampler``'s points."""
+    sampler = sampler or LineSampler(system, s)
+    element = sampler.element
+    points = sampler.evaluate(X)
+    stretch = np.linalg.norm(sampler.derivative(X), axis=1)
     EA = system.props["EA"][element]
     proj = system.seabed.project(points)
     stiffness = system.contact.stiffness[element, 0]
     contact = (stiffness * np.maximum(-proj.gap, 0.0))[:, None] * proj.direction
-    velocity = np.zeros_like(points) if V is None else fem.evaluate(V, s)
+    velocity = np.zeros_like(points) if V is None else sampler.evaluate(V)
     return {"points": points, "tension": EA * np.maximum(stretch - 1.0, 0.0),
             "strain": stretch - 1.0, "velocity": velocity, "seabed_gap": proj.gap,
             "contact_force": contact}

@@ -21,7 +21,7 @@ from .errors import ConvergenceError, InputError
 from .io.vtk import TimeSeriesWriter, polyline_mesh, write_atomic
 from .line import Line
 from .motion import fairlead_motion
-from .results import line_fields
+from .results import LineSampler, line_fields
 from .statics import solve_static
 from .system import LineSystem
 
@@ -143,6 +143,7 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
                                     tolerance=solver.tolerance, newton=solver.newton, **options)
                    for system, line, X0 in zip(systems, scene.lines, states)]
     frames = TimeSeriesWriter(out_dir, scene.name)
+    samplers = [LineSampler(integ.system) for integ in integrators]  # the frames' points, once
     tracker = _Extremes([line.name for line in scene.lines])
     summary = {"scene": scene.name, "seabed": scene.seabed.describe(),
                "notes": list(scene.notes) + setting_warnings(scene, dt),
@@ -165,7 +166,8 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
                     tracker.update(t, forces)
                 handle.flush()
                 if t >= frame * every - near:
-                    frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V) for i in integrators]))
+                    frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V, sampler=sampler)
+                                                   for i, sampler in zip(integrators, samplers)]))
                     frame = int(np.floor((t + near) / every)) + 1
                 if t >= duration - near:
                     break
