@@ -12,10 +12,8 @@ then y' ~ c0 y_{n+1} + c1 y_n + c2 y_{n-1} on X and V) and the same Newton
 tests as ``Integrator.newton``, line for line, so both paths give the same
 numbers to round-off (tests/test_march.py).
 
-The banded LU is LAPACK's unblocked algorithm (dgbtf2/dgbtrs) written out
-here: numba cannot cache a function that calls LAPACK through a ctypes pointer,
-and compiling on every start would cost ~30 s. At the bandwidths of a line
-(kl = ku = 3 (order + 1) - 1) the unblocked algorithm is what dgbtrf runs anyway.
+The banded LU is ``cablefem.banded`` (LAPACK's dgbtf2/dgbtrs written out for
+numba).
 
 The seabed is projected in the loop too: a plane by the fused kernel itself,
 a ``DepthGrid`` by its compiled bilinear projection, a ``TriangulatedSurface``
@@ -29,6 +27,7 @@ seabeds, and loads the fused kernel does not know, keep the per-step Python path
 import numpy as np
 from numba import njit
 
+from .banded import lu_factor, lu_solve
 from .fused import _assemble_loop
 from .geometry import DepthGrid, TriangulatedSurface
 from .geometry import _vertex_normal_jit as walk
@@ -43,63 +42,6 @@ DONE, FAILED, TOO_LONG, PROJECTION = 0, 1, 2, 3
 PLANE, GRID, TRIANGULATED = 0, 1, 2
 #: what ``_newton`` returns
 _CONVERGED, _DIVERGED, _LOST = 0, 1, 2
-
-
-@njit(cache=True, _nrt=False)
-def _lu_banded(lu, n, kl, ku, ipiv, multipliers):
-    """Factor a banded matrix in place by LU with partial pivoting; False if it is singular.
-
-    ``lu`` (n (2 kl + ku + 1),) holds LAPACK's column-major band layout flat: row i, column j
-    at lu[j ld + kl + ku + i - j], ld = 2 kl + ku + 1, the top kl rows of each column free for
-    the fill that row swaps make. The algorithm is LAPACK's unblocked dgbtf2 (Golub & Van Loan,
-    Alg. 4.3.5 with row pivoting): U reaches ku columns right of the diagonal without swaps and
-    up to kl + ku with them, and the work follows that reach. Flat indexing runs ~25 % faster
-    than 2-D indexing here (numba). ``multipliers``: scratch (kl + 1,)."""
-    ld = 2 * kl + ku + 1
-    d = kl + ku  # row of the diagonal
-    reach = 0
-    for j in range(n):
-        below = min(kl, n - 1 - j)
-        diag = j * ld + d
-        p = 0
-        for i in range(1, below + 1):
-            if abs(lu[diag + i]) > abs(lu[diag + p]):
-                p = i
-        ipiv[j] = j + p
-        if lu[diag + p] == 0.0:
-            return False
-        reach = max(reach, min(n - 1, j + ku + p))
-        if p:
-            for c in range(j, reach + 1):
-                q = c * ld + d + j - c
-                lu[q], lu[q + p] = lu[q + p], lu[q]
-        inverse = 1.0 / lu[diag]
-        for i in range(1, below + 1):
-            lu[diag + i] *= inverse
-            multipliers[i] = lu[diag + i]
-        for c in range(j + 1, reach + 1):
-            q = c * ld + d + j - c
-            top = lu[q]
-            for i in range(1, below + 1):
-                lu[q + i] -= multipliers[i] * top
-    return True
-
-
-@njit(cache=True, _nrt=False)
-def _lu_solve(lu, n, kl, ku, ipiv, rhs):
-    """Solve in place with the factors of ``_lu_banded`` (LAPACK's dgbtrs)."""
-    ld = 2 * kl + ku + 1
-    d = kl + ku
-    for j in range(n):  # L y = P b
-        p = ipiv[j]
-        if p != j:
-            rhs[j], rhs[p] = rhs[p], rhs[j]
-        for i in range(1, min(kl, n - 1 - j) + 1):
-            rhs[j + i] -= lu[j * ld + d + i] * rhs[j]
-    for j in range(n - 1, -1, -1):  # U x = y
-        rhs[j] /= lu[j * ld + d]
-        for i in range(max(0, j - d), j):
-            rhs[i] -= lu[j * ld + d + i - j] * rhs[j]
 
 
 @njit(cache=True)
@@ -156,6 +98,29 @@ def _point(X1, x_hist, v_hist, c0, V1, A1):
 
 
 @njit(cache=True)
+def _evaluate(kernel, projector, X1, V1, A1, c0, tangent, rows, band2, scratch, elements, counters):
+    """The step residual M A + G at X1, V1, A1 into ``rows`` over ``elements`` and, with
+    ``tangent``, its banded tangent into ``band2`` (both zeroed first), the seabed projected first
+    unless it is a plane (with its derivatives when a tangent is assembled). Returns the
+    projection's status (0, or the points the walk did not place)."""
+    (dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass, bed, plane, gap,
+     normal, grad_gap, dnormal, kl, ku) = kernel[:19]
+    if projector[0] != PLANE:
+        lost = _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal, tangent)
+        if lost != 0:
+            return lost
+    vec, blk, Re, Ke, M, u = scratch
+    rows[:] = 0.0
+    if tangent:
+        band2[:] = 0.0
+    _assemble_loop(X1, V1, A1, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass, bed,
+                   plane, gap, normal, grad_gap, dnormal, c0, c0 * c0, tangent, rows, band2, kl, ku,
+                   position.max(), vec, blk, Re, Ke, M, u, elements)
+    counters[2] += 1
+    return 0
+
+
+@njit(cache=True)
 def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key, rhs, base,
             step, scratch, settings, counters):
     """Newton on the step residual M A + G = 0 from X1 (updated in place), as
@@ -167,13 +132,9 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
     ``base`` (N, 3) along ``step`` (n,) (scratch).
     Returns _CONVERGED, with V1, A1 and the end rows of ``rows`` at the solution, _DIVERGED, or
     _LOST when the seabed projection (``projector``, see ``bdf2_steps``) could not place a point."""
-    (dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass, bed, plane, gap,
-     normal, grad_gap, dnormal, kl, ku, free_nodes, free_order, all_elements, end_elements,
-     anchor_node, fairlead_node) = kernel
-    vec, blk, Re, Ke, M, u = scratch
+    kl, ku, free_nodes, free_order, all_elements, end_elements = kernel[17:23]
     tolerance, increment_tolerance, scale = settings[0], settings[1], settings[2]
     reuse, contraction = settings[5] > 0.0, settings[6]
-    last = position.max()
     nb = rhs.shape[0]
     ld = 2 * kl + ku + 1
     band2 = band.reshape((nb, ld)).T  # the (ld, nb) column-major view the assembly writes
@@ -181,21 +142,13 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
     fresh = not reuse or lu_key[0] != c0
     previous = -1.0  # none yet
     base_norm, damping, min_damping = -1.0, 1.0, settings[7]  # base_norm < 0: no step taken yet
-    projected = projector[0] != PLANE
     for _ in range(int(settings[3])):
         _point(X1, x_hist, v_hist, c0, V1, A1)
         # the tangent with the residual unless the last residual promises convergence (Newton)
         with_tangent = fresh and (base_norm < 0.0 or base_norm > np.sqrt(tolerance))
-        if projected and _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal,
-                                  with_tangent) != 0:
+        if _evaluate(kernel, projector, X1, V1, A1, c0, with_tangent, rows, band2, scratch, all_elements,
+                     counters) != 0:
             return _LOST
-        rows[:] = 0.0
-        if with_tangent:
-            band[:] = 0.0
-        _assemble_loop(X1, V1, A1, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension,
-                       mass, bed, plane, gap, normal, grad_gap, dnormal, c0, c0 * c0, with_tangent, rows,
-                       band2, kl, ku, last, vec, blk, Re, Ke, M, u, all_elements)
-        counters[2] += 1
         norm = 0.0
         for i in free_nodes:
             for a in range(3):
@@ -213,26 +166,20 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
         if not np.isfinite(norm):
             break
         if fresh:
-            if not with_tangent:
-                if projected:  # the projection's derivatives, at the same points
-                    _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal, True)
-                rows[:] = 0.0
-                band[:] = 0.0
-                _assemble_loop(X1, V1, A1, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension,
-                               mass, bed, plane, gap, normal, grad_gap, dnormal, c0, c0 * c0, True, rows,
-                               band2, kl, ku, last, vec, blk, Re, Ke, M, u, all_elements)
-                counters[2] += 1
+            if not with_tangent:  # the same point again, with the tangent (the walk places it)
+                _evaluate(kernel, projector, X1, V1, A1, c0, True, rows, band2, scratch, all_elements,
+                          counters)
             counters[3] += 1
             lu[:] = band
             lu_key[0] = np.nan
-            if not _lu_banded(lu, nb, kl, ku, ipiv, multipliers):
+            if not lu_factor(lu, nb, kl, ku, ipiv, multipliers):
                 break
             counters[4] += 1
             lu_key[0] = c0
         for j in range(free_order.shape[0]):
             for a in range(3):
                 rhs[3 * j + a] = -rows[free_order[j], a]
-        _lu_solve(lu, nb, kl, ku, ipiv, rhs)
+        lu_solve(lu, nb, kl, ku, ipiv, rhs)
         size = 0.0
         for j in range(nb):
             size = max(size, abs(rhs[j]))
@@ -250,14 +197,9 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
                 0.0 <= rho < 1.0 and size * rho / (1 - rho) <= increment_tolerance):
             # the reactions need only the end rows: evaluate the two end elements
             _point(X1, x_hist, v_hist, c0, V1, A1)
-            if projected and _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal,
-                                      False) != 0:
+            if _evaluate(kernel, projector, X1, V1, A1, c0, False, rows, band2, scratch, end_elements,
+                         counters) != 0:
                 return _LOST
-            rows[:] = 0.0
-            _assemble_loop(X1, V1, A1, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension,
-                           mass, bed, plane, gap, normal, grad_gap, dnormal, c0, c0 * c0, False, rows, band2,
-                           kl, ku, last, vec, blk, Re, Ke, M, u, end_elements)
-            counters[2] += 1
             return _CONVERGED
         fresh = not reuse or rho > contraction
         previous = size
@@ -279,7 +221,7 @@ def bdf2_steps(kernel, projector, state, history, times, fairlead, anchor, setti
     the start), the last step (0 if none)], updated; settings: [tolerance, increment tolerance,
     residual scale, max iterations, max growth of a step over the last one, modified Newton
     (0 or 1), contraction limit, smallest line-search damping]; lu (n (2 kl + ku + 1),) (see
-    ``_lu_banded``), ipiv (n,), lu_key (1,): modified Newton's factors and the c0 they belong to
+    ``cablefem.banded``), ipiv (n,), lu_key (1,): modified Newton's factors and the c0 they belong to
     (NaN: none), kept between calls;
     forces (m, 2, 3): the line's forces on fairlead and anchor after each step; counters:
     [steps, newton iterations, residual evaluations, tangents, LU factorisations], added to.
@@ -366,9 +308,8 @@ class Marcher:
         self.settings = np.array([integ.tolerance, integ.increment_tolerance, integ.scale,
                                   integ.max_iterations, np.inf, float(integ.reuse_jacobian),
                                   integ.CONTRACTION, integ.MIN_DAMPING])
-        n = 3 * (fem.n_dofs - 2)
-        self.lu = np.zeros(n * (2 * ev.kl + ev.ku + 1))  # LAPACK's column-major band, flat
-        self.ipiv = np.zeros(n, dtype=np.int64)
+        self.lu = np.zeros(ev.n * (2 * ev.kl + ev.ku + 1))  # LAPACK's column-major band, flat
+        self.ipiv = np.zeros(ev.n, dtype=np.int64)
         self.lu_key = np.full(1, np.nan)
 
     @classmethod

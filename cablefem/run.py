@@ -162,7 +162,7 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
             rows = [(t, [integ.reactions() for integ in integrators])]
             while True:
                 for t, forces in rows:
-                    table.writerow([f"{t:.10g}"] + [f"{x:.10g}" for f in forces for x in _row(f)])
+                    table.writerow(_row(t, forces))
                     tracker.update(t, forces)
                 handle.flush()
                 if t >= frame * every - near:
@@ -216,26 +216,28 @@ class StepControl:
         self.h = dt / 8 if self.adaptive else dt
         self.accepted = self.rejected = 0
 
+    @staticmethod
+    def landing(h, to_stop):
+        """The step to take instead of h with ``to_stop`` [s] left: all of it when h would leave
+        no more than ``Integrator.STRETCH`` h (never a sliver before a stop), half of it when
+        it is under 2 h, else h."""
+        if to_stop <= h * (1 + Integrator.STRETCH):
+            return to_stop
+        return to_stop / 2 if to_stop < 2 * h else h
+
     def times(self, t, stop):
-        """The times (m,) of fixed steps of dt from t to ``stop``: the last step stretches by up
-        to ``Integrator.STRETCH`` to land on it, and a remainder under 2 dt is split in two."""
-        times, dt = [], self.max_dt
-        while stop - t > 1e-9 * dt:
-            if stop - t <= dt * (1 + Integrator.STRETCH):
-                t = stop
-            else:
-                t += dt if stop - t >= 2 * dt else (stop - t) / 2
+        """The times (m,) of fixed steps of dt from t to ``stop``, landing on it (``landing``)."""
+        times = []
+        while stop - t > 1e-9 * self.max_dt:
+            h = self.landing(self.max_dt, stop - t)
+            t = stop if h == stop - t else t + h
             times.append(t)
         return np.array(times)
 
     def advance(self, integrators, to_stop):
         """Take one step (retrying smaller ones when adaptive) of at most ``to_stop`` [s]."""
         while True:
-            h = self.h if self.adaptive else self.max_dt
-            if to_stop <= h * (1 + Integrator.STRETCH):  # land on the stop, never leave a sliver before it
-                h = to_stop
-            elif to_stop < 2 * h:
-                h = to_stop / 2
+            h = self.landing(self.h if self.adaptive else self.max_dt, to_stop)
             snapshots = [integ.snapshot() for integ in integrators]
             first = any(getattr(integ, "previous", True) is None for integ in integrators)
             for integ in integrators:
@@ -266,16 +268,18 @@ def _march(integrators, times, table):
         last = len(forces) == len(integrators) - 1  # the lines before it have all the rows
         reached = len(error.forces) if last else 0
         for k in range(reached):
-            table.writerow([f"{times[k]:.10g}"] + [f"{x:.10g}" for f in forces + [error.forces]
-                                                   for x in _row(f[k])])
+            table.writerow(_row(times[k], [f[k] for f in forces + [error.forces]]))
         raise
     return [(tk, [f[k] for f in forces]) for k, tk in enumerate(times)]
 
 
-def _row(forces):
-    """fairlead_tension, anchor_tension, fx, fy, fz of one line's (fairlead, anchor) forces."""
-    fairlead, anchor = forces
-    return (np.linalg.norm(fairlead), np.linalg.norm(anchor), *fairlead)
+def _row(t, forces):
+    """A tensions.csv row: t, then per line fairlead_tension, anchor_tension, fx, fy, fz, from each
+    line's (fairlead, anchor) forces."""
+    values = [t]
+    for fairlead, anchor in forces:
+        values += [np.linalg.norm(fairlead), np.linalg.norm(anchor), *fairlead]
+    return [f"{x:.10g}" for x in values]
 
 
 def _columns(scene):

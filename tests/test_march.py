@@ -6,7 +6,7 @@ from scipy.linalg import solve_banded
 
 from cablefem.dynamics import BDF2, Integrator
 from cablefem.geometry import DepthGrid
-from cablefem.march import _lu_banded, _lu_solve
+from cablefem.banded import lu_factor, lu_solve
 from cablefem.motion import fairlead_motion
 from cablefem.run import StepControl, boundary_path, build_system, start_states
 from cablefem.scene import Motion
@@ -111,12 +111,12 @@ def test_banded_lu_with_pivoting_solves_like_scipy():
     expected = solve_banded((kl, ku), band[kl:], b)
     x, pivots, scratch = b.copy(), np.zeros(n, dtype=np.int64), np.zeros(kl + 1)
     flat = band.T.ravel()  # columns one after the other
-    assert _lu_banded(flat, n, kl, ku, pivots, scratch)
-    _lu_solve(flat, n, kl, ku, pivots, x)
+    assert lu_factor(flat, n, kl, ku, pivots, scratch)
+    lu_solve(flat, n, kl, ku, pivots, x)
     assert np.max(np.abs(dense @ x - b)) <= 1e-10 * np.max(np.abs(b))
     assert np.allclose(x, expected, rtol=1e-9, atol=1e-12)
     singular = np.zeros(n * (2 * kl + ku + 1))
-    assert not _lu_banded(singular, n, kl, ku, pivots, scratch)
+    assert not lu_factor(singular, n, kl, ku, pivots, scratch)
 
 
 @pytest.mark.parametrize("dt, stop", [(0.04, 1.0), (0.03, 1.0), (0.17, 0.5), (0.1, 0.1000001)])
