@@ -318,22 +318,17 @@ class TriangulatedSurface(Seabed):
         n = len(points)
         same = [state for state in self._states if len(state[0]) == n]
         triangle, sth, out = np.empty(n, dtype=np.int64), np.empty((3, n)), np.empty((jit.OUTPUTS, n))
-        if self._safe is None:
-            self._safe = np.ascontiguousarray(self._warm_tables()[vn.W_SAFE])
+        safe = self._safe_radii()
         lost = -1
         if len(same) == 1:  # one line on this seabed: the kernel sees whether it moved far
             state = same[0]
-            origin, start, unheld, start_h = _component_first(state), state[1], state[2], state[3]
-            lost = jit.project(xyz, origin, start, start_h, unheld, self._rows, self._across, self._safe,
+            origin, start, unheld, start_h = self._walk_from(state, points)
+            lost = jit.project(xyz, origin, start, start_h, unheld, self._rows, self._across, safe,
                                self._size, self._typical, WALK_STEPS, True, mode, triangle, sth, out)
         if lost < 0:  # several lines, or one that moved far: start as _located does
             state = self._recall(points)[0]
-            if state is None:  # cold: from the nearest centroids, no h to start from
-                origin, start = xyz, self._nearest(points, 1)[:, 0]
-                unheld, start_h = np.zeros(n, dtype=bool), np.full(n, np.nan)
-            else:
-                origin, start, unheld, start_h = _component_first(state), state[1], state[2], state[3]
-            lost = jit.project(xyz, origin, start, start_h, unheld, self._rows, self._across, self._safe,
+            origin, start, unheld, start_h = self._walk_from(state, points)
+            lost = jit.project(xyz, origin, start, start_h, unheld, self._rows, self._across, safe,
                                self._size, np.inf, WALK_STEPS, True, mode, triangle, sth, out)
         beyond = np.zeros(n, dtype=bool)
         if lost:  # the numpy search from the same start, for the points the walk left
@@ -344,7 +339,7 @@ class TriangulatedSurface(Seabed):
                 last = (state[1][rows], state[2][rows], state[3][rows], moved <= self._size[state[1][rows]])
             found = self._locate(points[rows], self._table, self._nearest, last, self._below)
             triangle[rows], sth[0, rows], sth[1, rows], sth[2, rows], beyond[rows] = found
-            jit.project(xyz, origin, start, start_h, unheld, self._rows, self._across, self._safe,
+            jit.project(xyz, origin, start, start_h, unheld, self._rows, self._across, safe,
                         self._size, np.inf, WALK_STEPS, False, mode, triangle, sth, out)
         self._remember(state, points, triangle, beyond, sth[2], xyz=xyz)
         return triangle, sth, out
@@ -356,16 +351,26 @@ class TriangulatedSurface(Seabed):
         (origin (3, n), start triangles (n,), unheld (n,), heights (n,)), or a cold start from
         the nearest centroids. ``walk_end`` hands the last call back."""
         points = _checked(points)
+        origin, start, unheld, start_h = self._walk_from(self._recall(points)[0], points)
+        # copies: the caller's walk moves them on
+        warm = (np.array(origin, dtype=float), np.array(start, dtype=np.int64), np.array(unheld, dtype=bool),
+                np.array(start_h, dtype=float))
+        return (self._rows, self._across, self._safe_radii(), self._size, self._typical) + warm
+
+    def _walk_from(self, state, points):
+        """Where the compiled walk starts for points (n, 3) [m]: origin (3, n), triangles (n,),
+        unheld (n,) and heights (n,) of the remembered call ``state``, or, without one, cold from
+        the nearest centroids with no height to start from."""
+        if state is None:
+            n = len(points)
+            return points.T, self._nearest(points, 1)[:, 0], np.zeros(n, dtype=bool), np.full(n, np.nan)
+        return _component_first(state), state[1], state[2], state[3]
+
+    def _safe_radii(self):
+        """The warm table's SAFE row (k,), contiguous, for the compiled walk; built once."""
         if self._safe is None:
             self._safe = np.ascontiguousarray(self._warm_tables()[vn.W_SAFE])
-        state = self._recall(points)[0]
-        if state is None:
-            warm = (points.T.copy(), self._nearest(points, 1)[:, 0].astype(np.int64),
-                    np.zeros(len(points), dtype=bool), np.full(len(points), np.nan))
-        else:
-            warm = (_component_first(state).copy(), state[1].astype(np.int64), state[2].copy(),
-                    np.array(state[3], dtype=float))
-        return (self._rows, self._across, self._safe, self._size, self._typical) + warm
+        return self._safe
 
     def walk_end(self, xyz, triangle, h):
         """Remember a compiled caller's last call: points xyz (3, n) [m] found in ``triangle``
