@@ -102,7 +102,6 @@ class LineSampler:
 
     def __init__(self, system, s=None):
         fem = system.fem
-        self.system = system
         self.s = sample_arc_lengths(system) if s is None else np.asarray(s, dtype=float)
         self.values, self.gradients = fem._local_basis(self.s)  # (n, nloc) each
         self.element = fem._locate(self.s)[0]
