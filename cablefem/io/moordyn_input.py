@@ -29,6 +29,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..geometry import Horizontal, Plane, simplify as simplest_model
+from ..geometry.readers import is_number
 from ..line import Line, LineType, Segment
 from ..scene import Contact, Environment, Friction, Scene, Solver
 from . import validate as v
@@ -83,14 +84,6 @@ def _value(token, number, key, check=v.number):
     return check(value, _at(number, key))
 
 
-def _is_number(token):
-    try:
-        float(token)
-    except ValueError:
-        return False
-    return True
-
-
 def split_sections(text):
     """[(section or None, header text, line number, [(line number, fields)])] of a MoorDyn file."""
     sections, current = [], None
@@ -114,7 +107,7 @@ def split_sections(text):
 def _table_rows(section, rows):
     """Data rows of a table section: up to two leading column-name/unit rows are dropped."""
     skipped = 0
-    while skipped < min(2, len(rows)) and not any(_is_number(f) for f in rows[skipped][1]):
+    while skipped < min(2, len(rows)) and not any(is_number(f) for f in rows[skipped][1]):
         number, fields = rows[skipped]
         if V1_COLUMNS[section] & {f.upper() for f in fields}:
             raise InputError(f"MoorDyn v1 columns ({' '.join(fields)}) are not supported; write the v2 "
@@ -134,7 +127,7 @@ def parse_sections(sections):
     recognised = False
     for name, title, number, rows in sections:
         if name is None:
-            data = [r for r in rows if sum(_is_number(f) for f in r[1]) >= 2]
+            data = [r for r in rows if sum(is_number(f) for f in r[1]) >= 2]
             if recognised and data:
                 raise InputError("unrecognised section (cablefem reads LINE TYPES, POINTS, LINES, OPTIONS, "
                                  "OUTPUTS)", key=_at(number, title))
@@ -144,7 +137,7 @@ def parse_sections(sections):
             found[name] += _table_rows(name, rows)
         elif name in ("OPTIONS", "OUTPUTS"):
             found[name] += rows
-        elif any(sum(_is_number(f) for f in fields) >= 1 for _, fields in rows):
+        elif any(sum(is_number(f) for f in fields) >= 1 for _, fields in rows):
             raise InputError("not supported yet", key=_at(number, name))
     return found
 
@@ -158,14 +151,14 @@ def _line_types(rows, notes):
         if name in types:
             raise InputError("duplicate line type name", key=_at(number, key))
         for column, token in zip(("EA", "BA/-zeta"), fields[3:5]):
-            if "|" in token or not _is_number(token):
+            if "|" in token or not is_number(token):
                 raise InputError(f"nonlinear or viscoelastic {column} ('{token}') is not supported yet",
                                  key=_at(number, f"{key}.{column}"))
         values = {col: _value(tok, number, f"{key}.{col}", LINE_TYPE_CHECKS[col])
                   for col, tok in zip(TABLE_COLUMNS["LINE TYPES"][1:], fields[1:10])}
         if values["EI"] != 0.0:
             notes.append(f"LINE TYPES.{name}: EI = {values['EI']:g} N m^2 ignored (no bending stiffness)")
-        if any(_is_number(f) and float(f) != 0.0 for f in fields[10:]):
+        if any(is_number(f) and float(f) != 0.0 for f in fields[10:]):
             notes.append(f"LINE TYPES.{name}: columns after CaAx ignored ({' '.join(fields[10:])})")
         types[name] = (number, values)
     return types

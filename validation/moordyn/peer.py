@@ -48,6 +48,8 @@ from pathlib import Path
 
 import numpy as np
 
+from cablefem.geometry.readers import is_number
+
 COUPLED = ("COUPLED", "VESSEL", "VES", "CPLD", "FAIRLEAD")
 
 
@@ -85,14 +87,6 @@ def _section(lines, keyword):
     return None
 
 
-def _is_number(token):
-    try:
-        float(token)
-    except ValueError:
-        return False
-    return True
-
-
 def coupled_points(path):
     """IDs (k,) and positions (k, 3) [m] of the coupled points of a MoorDyn v2 file, in file order."""
     lines = Path(path).read_text().splitlines()
@@ -118,7 +112,7 @@ def _line_rows(lines):
     if where is None:
         return []
     return [i for i in range(*where)
-            if len(lines[i].split()) >= 6 and _is_number(lines[i].split()[4]) and lines[i].split()[5].isdigit()]
+            if len(lines[i].split()) >= 6 and is_number(lines[i].split()[4]) and lines[i].split()[5].isdigit()]
 
 
 def line_segments(text):

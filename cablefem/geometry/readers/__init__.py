@@ -101,7 +101,7 @@ def guess_kind(path):
         if suffix in meshio.extension_to_filetypes:
             return "mesh"
     rows = [line.split() for line in _head(path) if line.strip() and not line.lstrip().startswith("#")]
-    if rows and all(len(row) == 3 and all(_is_number(t) for t in row) for row in rows):
+    if rows and all(len(row) == 3 and all(is_number(t) for t in row) for row in rows):
         return "points"
     raise InputError("cannot tell which kind of seabed this file holds; give kind = "
                      "grid | mesh | points", key="kind", file=path)
@@ -109,7 +109,8 @@ def guess_kind(path):
 
 # -- text helpers shared by the grid readers ---------------------------------
 
-def _is_number(token):
+def is_number(token):
+    """Whether a text token reads as a float (shared by the seabed and MoorDyn file readers)."""
     try:
         float(token)
     except ValueError:
@@ -132,7 +133,7 @@ def numbers(tokens, line, what):
     try:
         values = np.array([float(t) for t in tokens])
     except ValueError:
-        bad = next(t for t in tokens if not _is_number(t))
+        bad = next(t for t in tokens if not is_number(t))
         raise InputError(f"{what}: {bad!r} is not a number", key=f"line {line}") from None
     if not np.all(np.isfinite(values)):
         bad = tokens[int(np.flatnonzero(~np.isfinite(values))[0])]
