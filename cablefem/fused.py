@@ -236,14 +236,15 @@ def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, v_x, a_x, jac, f, 
 
 
 @njit(cache=True, _nrt=False)
-def _tension(dr, dv, EA, beta, v_x, jac, N, Dblk):
-    """Flux N = T t at one reduced point and D = N_dr + v_x N_dv (cablefem.loads.tension)."""
+def _tension(dr, dv, EA, beta, pushes, v_x, jac, N, Dblk):
+    """Flux N = T t at one reduced point and D = N_dr + v_x N_dv (cablefem.loads.tension);
+    ``pushes``: the line may push (T = EA e for all e, the statics start-up aid)."""
     stretch = np.sqrt(_dot(dr, dr))
     t0, t1, t2 = dr[0] / stretch, dr[1] / stretch, dr[2] / stretch
     e = stretch - 1.0
     rate = t0 * dv[0] + t1 * dv[1] + t2 * dv[2]
     T = EA * (e + beta * rate)
-    active = e > 0.0 and T > 0.0
+    active = pushes or (e > 0.0 and T > 0.0)
     if not active:
         T = 0.0
     N[0], N[1], N[2] = T * t0, T * t1, T * t2
@@ -327,7 +328,7 @@ def _assemble_loop(X, V, Acc, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, p
                 for a in range(3):
                     dr[a] += rdphi[l, e, g] * X[i, a]
                     dv[a] += rdphi[l, e, g] * V[i, a]
-            _tension(dr, dv, tension[e, 0], tension[e, 1], v_x, jac, N, Db)
+            _tension(dr, dv, tension[e, 0], tension[e, 1], tension[e, 2] > 0.0, v_x, jac, N, Db)
             w = rdx[e, g]
             for l in range(nloc):
                 for a in range(3):
@@ -393,8 +394,9 @@ class FusedEvaluator:
             elif isinstance(load, AddedMass):
                 params[:, 9], params[:, 10] = load.normal[:, 0], load.tangential[:, 0]
         self.params = params
+        # EA, beta and whether the line may push (read from ``system.tension`` at each evaluation)
         self.tension = np.column_stack([system.tension.EA[:, 0], props["damping"]
-                                        if system.tension.beta is not None else np.zeros(nel)])
+                                        if system.tension.beta is not None else np.zeros(nel), np.zeros(nel)])
         law = system.contact.friction
         if isinstance(law, IsotropicFriction):
             self.bed = (1, law.mu, 0.0, 0.0, law.static_scale, law.v_threshold)
@@ -416,7 +418,7 @@ class FusedEvaluator:
         from .loads.tension import Tension
 
         known = (Tension, Weight, SeabedContact, Drag, AddedMass)
-        if system.tension.compression or not all(isinstance(load, known) for load in system.loads):
+        if not all(isinstance(load, known) for load in system.loads):
             return None
         if sum(isinstance(load, (Drag, AddedMass)) for load in system.loads) > 2:
             return None
@@ -425,6 +427,7 @@ class FusedEvaluator:
     def evaluate(self, X, V, A, v_x, a_x, jacobian=True):
         """Rows M A + G (N, 3) and, with ``jacobian``, the banded K + a_x M (LAPACK layout)."""
         fem = self.system.fem
+        self.tension[:, 2] = float(self.system.tension.compression)
         if self.plane.size:
             gap, normal, grad, dn = self.unused
         else:

@@ -85,19 +85,16 @@ def newton(system, X, tolerance=1e-8, max_iterations=50, scale=None):
     scale = scale or float(np.linalg.norm(system.weight_vector()[free])) or 1.0
     X = X.copy()
     floor = residual_floor(system, X, scale)
-    residual, blocks = system.evaluate(system.state(X))
+    linear = _Linearisation.of(system)
+    residual, tangent = linear.evaluate(X)
     norm = np.linalg.norm(residual[free]) / scale
-    energy = system.energy(X)
+    energy = None  # the potential energy at X, computed when a line search needs it
     history = [norm]
     for iteration in range(1, max_iterations + 1):
         if norm <= tolerance:
             return X, iteration - 1, norm, history, True
-        tangent = system.matrix(blocks)
-        try:
-            step = spla.spsolve(tangent.tocsc(), -residual[free].ravel()).reshape(-1, 3)
-        except RuntimeError:
-            return X, iteration, norm, history, False
-        if not np.all(np.isfinite(step)):
+        step = linear.solve(tangent, residual)
+        if step is None or not np.all(np.isfinite(step)):
             return X, iteration, norm, history, False
         small = np.max(np.abs(step)) <= tolerance * length
         slope = float(np.sum(residual[free] * step))  # d(energy)/d(lambda) at lambda = 0
@@ -105,27 +102,68 @@ def newton(system, X, tolerance=1e-8, max_iterations=50, scale=None):
         for _ in range(30):
             trial = X.copy()
             trial[free] += lam * step
-            residual_t, blocks_t = system.evaluate(system.state(trial))
+            residual_t, tangent_t = linear.evaluate(trial)
             norm_t = np.linalg.norm(residual_t[free]) / scale
-            energy_t = system.energy(trial)
             # Armijo on the residual (Kelley 2003), or on the potential energy along a descent
             # direction: with a stiff seabed the residual jumps when a step presses a point
             # into the ground, while the energy still measures progress
-            if (small or norm_t <= (1.0 - 1e-4 * lam) * norm
-                    or (slope < 0 and energy_t <= energy + 1e-4 * lam * slope)):
-                accepted = True
+            if small or norm_t <= (1.0 - 1e-4 * lam) * norm:
+                accepted, energy_t = True, None
                 break
+            if slope < 0:
+                energy = system.energy(X) if energy is None else energy
+                energy_t = system.energy(trial)
+                if energy_t <= energy + 1e-4 * lam * slope:
+                    accepted = True
+                    break
             lam = _parabolic_step(lam, norm, norm_t)
         if not accepted:
             return X, iteration, norm, history, False
         # a full Newton step that no longer halves the residual has hit round-off: converged
         # if that is where the residual stands, not if Newton merely stalls above it
         stalled = lam == 1.0 and norm_t > 0.5 * norm and norm_t <= floor
-        X, residual, blocks, norm, energy = trial, residual_t, blocks_t, norm_t, energy_t
+        X, residual, tangent, norm, energy = trial, residual_t, tangent_t, norm_t, energy_t
         history.append(norm)
         if norm <= tolerance or stalled:
             return X, iteration, norm, history, True
     return X, max_iterations, norm, history, norm <= tolerance
+
+
+class _Linearisation:
+    """The static residual rows (N, 3) at X with their tangent, and the Newton step from them:
+    through ``cablefem.fused`` (compiled, banded LU) when the system assembles with its kernel
+    and holds only loads the fused kernel knows, else through ``LineSystem.evaluate`` and a
+    sparse LU (the reference path, and scikit-fem's forms with ``assembly="forms"``). Both give
+    the same numbers to round-off (tests/test_statics.py). Built per Newton solve: the fused
+    kernel copies the seabed stiffness, which stiffness continuation changes between solves."""
+
+    def __init__(self, system, fused):
+        self.system, self.fused = system, fused
+        self.zeros = np.zeros((system.fem.n_dofs, 3))
+
+    @classmethod
+    def of(cls, system):
+        fused = None
+        if system.assembly == "kernel":
+            from .fused import FusedEvaluator
+            fused = FusedEvaluator.for_system(system, system.props["mass"])
+        return cls(system, fused)
+
+    def evaluate(self, X):
+        if self.fused is None:
+            return self.system.evaluate(self.system.state(X))
+        return self.fused.evaluate(X, self.zeros, self.zeros, 0.0, 0.0)
+
+    def solve(self, tangent, residual):
+        """Newton step (N_free, 3) of the free DOFs, or None when the tangent is singular."""
+        if self.fused is None:
+            try:
+                K = self.system.matrix(tangent).tocsc()
+                return spla.spsolve(K, -residual[self.system.fem.free_dofs].ravel()).reshape(-1, 3)
+            except RuntimeError:
+                return None
+        factors = self.fused.factorize(tangent)
+        return None if factors is None else self.fused.solve(factors, residual)
 
 
 def residual_floor(system, X, scale):
