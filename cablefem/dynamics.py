@@ -167,7 +167,7 @@ class Integrator:
             X, V, A = point(X1)
             # the tangent comes with the residual unless Newton's quadratic convergence from the
             # last residual promises that this one converges (then it is evaluated if not)
-            with_tangent = fresh and (base is None or base[1] > np.sqrt(self.tolerance))
+            with_tangent = fresh and damping == 1.0 and (base is None or base[1] > np.sqrt(self.tolerance))
             rows, tangent = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, with_tangent)
             norm = np.linalg.norm(rows[free]) / self.scale
             if norm <= self.tolerance and previous is not None:

@@ -145,7 +145,7 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
     for _ in range(int(settings[3])):
         _point(X1, x_hist, v_hist, c0, V1, A1)
         # the tangent with the residual unless the last residual promises convergence (Newton)
-        with_tangent = fresh and (base_norm < 0.0 or base_norm > np.sqrt(tolerance))
+        with_tangent = fresh and damping == 1.0 and (base_norm < 0.0 or base_norm > np.sqrt(tolerance))
         if _evaluate(kernel, projector, X1, V1, A1, c0, with_tangent, rows, band2, scratch, all_elements,
                      counters) != 0:
             return _LOST
