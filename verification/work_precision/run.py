@@ -118,13 +118,17 @@ def plan(fast):
         }}
     meshes = ([(1, n) for n in (20, 40, 80, 160, 320)] + [(2, n) for n in (10, 20, 40, 80, 160)]
               + [(3, n) for n in (10, 20, 40, 80)])
+    # the element counts between those (x sqrt 2), with the loose Newton tolerance only
+    between = ([(1, n) for n in (28, 57, 113, 226)] + [(2, n) for n in (14, 28, 57, 113)]
+               + [(3, n) for n in (14, 28, 57)])
 
     def sweep(dts, loose_dts):
-        """BDF2 on every mesh at every dt of ``dts``; Newton tolerance LOOSE_NEWTON at ``loose_dts``;
-        generalised-alpha and adaptive BDF2 on two P2 meshes (smaller steps than 0.01 s are
-        dominated here: the time_order entry covers the time error)."""
+        """BDF2 on every mesh at every dt of ``dts``; Newton tolerance LOOSE_NEWTON at ``loose_dts``
+        on these meshes and those between them; generalised-alpha and adaptive BDF2 on two P2
+        meshes (smaller steps than 0.01 s are dominated here: the time_order entry covers the
+        time error)."""
         return ([P(k, n, dt) for k, n in meshes for dt in dts]
-                + [P(k, n, dt, tolerance=LOOSE_NEWTON) for k, n in meshes for dt in loose_dts]
+                + [P(k, n, dt, tolerance=LOOSE_NEWTON) for k, n in meshes + between for dt in loose_dts]
                 + [P(2, n, dt, "generalized-alpha") for n in (40, 80) for dt in (0.02, 0.01)]
                 + [P(2, n, 0.05, adaptive=True, error_tolerance=tol) for n in (40, 80) for tol in (1e-3, 1e-4)])
 
@@ -147,7 +151,7 @@ def plan(fast):
             "moordyn_reference": MoordynSettings(640, 1e-4),
             "ic_check": MoordynSettings(80, 0.0025),
             "moordyn_segments": md_segments,
-            "cablefem": sweep((0.02, 0.01), (0.08, 0.04, 0.02)),
+            "cablefem": sweep((0.02, 0.01), (0.16, 0.08, 0.04, 0.02)),
             "time_order": {"mesh": (2, 40), "dts": (0.02, 0.01, 0.005), "reference_dt": 0.00125},
         },
     }
