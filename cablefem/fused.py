@@ -89,10 +89,11 @@ def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, v_x, a_x, jac, f, 
     stretch = np.sqrt(_dot(dr, dr))
     for i in range(3):
         t[i] = dr[i] / stretch
-    for i in range(3):
-        for j in range(3):
-            eye[i, j] = 1.0 if i == j else 0.0
-            P[i, j] = eye[i, j] - t[i] * t[j]
+    if jac:
+        for i in range(3):
+            for j in range(3):
+                eye[i, j] = 1.0 if i == j else 0.0
+                P[i, j] = eye[i, j] - t[i] * t[j]
     # seabed contact (desire2023 Eq. 11) and friction (Eq. 12; housner2022 Eq. 5-13)
     touching = gap < 0.0
     pressure = -k * gap if touching else 0.0

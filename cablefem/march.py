@@ -112,7 +112,7 @@ def _evaluate(kernel, projector, X1, V1, A1, c0, tangent, rows, band2, scratch, 
     vec, blk, Re, Ke, M, u = scratch
     rows[:] = 0.0
     if tangent:
-        band2[:] = 0.0
+        band2.T[:] = 0.0  # the contiguous (nb, ld) view: a memset, not a strided walk
     _assemble_loop(X1, V1, A1, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass, bed,
                    plane, gap, normal, grad_gap, dnormal, c0, c0 * c0, tangent, rows, band2, kl, ku,
                    position.max(), vec, blk, Re, Ke, M, u, elements)
