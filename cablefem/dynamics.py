@@ -258,10 +258,7 @@ class Integrator:
             if not self.attempt(h):
                 self.rejected += 1
                 if h / 2 < self.min_dt:
-                    raise ConvergenceError(
-                        f"{self.name}: Newton did not converge at t = {self.t:.6g} s even with "
-                        f"dt = {h:.3g} s; try a smaller dt, more elements or a softer seabed",
-                        iterations=self.newton_iterations)
+                    raise self.too_small(h)
                 h /= 2
                 continue
             self.steps += 1
@@ -269,6 +266,13 @@ class Integrator:
             done += h
             h = target
         return target
+
+    def too_small(self, h):
+        """The error of a step of size h whose Newton failed when half of it is below ``min_dt``."""
+        return ConvergenceError(
+            f"{self.name}: Newton did not converge at t = {self.t:.6g} s even with "
+            f"dt = {h:.3g} s; try a smaller dt, more elements or a softer seabed",
+            iterations=self.newton_iterations)
 
     def march(self, times):
         """Step to each of ``times`` (ascending, after t) in turn, each as ``step`` does; returns
@@ -360,22 +364,24 @@ class BDF2(Integrator):
             return super().march(times)
         times = np.asarray(times, dtype=float)
         fairlead = self.fairlead_positions(times)
+        # the fairlead halfway through each step, for a step the compiled loop halves
+        midpoints = self.fairlead_positions(0.5 * (np.append(self.t, times[:-1]) + times))
         forces = np.empty((len(times), 2, 3))
         k = 0
         while k < len(times):
-            status, done, forces[k:] = self.marcher.run(self, times[k:], fairlead[k:],
-                                                        self.MAX_GROWTH * (1 + self.STRETCH))
-            self.steps += done
+            status, done, forces[k:], stopped = self.marcher.run(
+                self, times[k:], fairlead[k:], self.MAX_GROWTH * (1 + self.STRETCH), midpoints[k:])
             k += done
             if status == DONE:
                 break
-            # Newton failed (halve, as ``step`` does), the step would grow too fast (``step``
-            # grows it back by doubling) or the walk lost a point (``attempt`` projects it in
-            # Python): this step goes through ``step``, the rest resume here
-            failed = status == FAILED
-            self.rejected += failed
+            # Newton failed at a half step too (``step`` halves on), the step would grow too
+            # fast (``step`` grows it back by doubling) or the walk lost a point (``attempt``
+            # projects it in Python): this step goes through ``step``, the rest resume here
+            first = {FAILED: 0.5 * stopped, PROJECTION: stopped}.get(status)
             try:
-                self.step(times[k] - self.t, first=0.5 * (times[k] - self.t) if failed else None)
+                if first is not None and first < self.min_dt:
+                    raise self.too_small(2 * first)
+                self.step(times[k] - self.t, first=first)
             except ConvergenceError as error:
                 error.forces = forces[:k]
                 raise
@@ -398,7 +404,7 @@ class BDF2(Integrator):
     def attempt(self, h):
         if self.marcher is not None:
             t1 = self.t + h
-            status, done, _ = self.marcher.run(self, [t1], self.boundary(t1)[0][None], np.inf)
+            status, done, _, _ = self.marcher.run(self, [t1], self.boundary(t1)[0][None], np.inf)
             if status != PROJECTION:
                 return done == 1
             # the compiled walk lost a point: this attempt projects in Python (with its search)

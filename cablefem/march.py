@@ -9,8 +9,11 @@ and runs of steps, without returning to Python: the same variable-step BDF2
 (``cablefem.dynamics.BDF2``, desire2023 Sec. 2.1.2: backward Euler to start,
 then y' ~ c0 y_{n+1} + c1 y_n + c2 y_{n-1} on X and V) and the same Newton
 (full or modified, with the residual line search) with the same convergence
-tests as ``Integrator.newton``, line for line, so both paths give the same
-numbers to round-off (tests/test_march.py).
+tests as ``Integrator.newton``, line for line, and a step that fails halved
+once in the loop as ``Integrator.step`` halves it (to its midpoint, then on),
+so both paths give the same numbers to round-off (tests/test_march.py).
+Before the halving moved into the loop, every failed step returned to Python
+for its halves: ~30 % of a coarse snap-load run's time (P2 x 10, dt 0.16 s).
 
 The banded LU is ``cablefem.banded`` (LAPACK's dgbtf2/dgbtrs written out for
 numba).
@@ -208,79 +211,116 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
 
 
 @njit(cache=True)
-def bdf2_steps(kernel, projector, state, history, times, fairlead, anchor, settings, lu, ipiv, lu_key,
-               forces, counters):
+def _attempt(kernel, projector, state, history, h, position, anchor, settings, lu, ipiv, lu_key, work,
+             counters):
+    """One BDF2 step of size h from t = history[0] with the fairlead at ``position`` (3,) (see
+    ``bdf2_steps`` for the arguments; ``work``: its scratch), its time arithmetic that of
+    ``BDF2.attempt`` (t + h). On _CONVERGED the state and history move on to t + h and ``rows``
+    holds the reactions; otherwise (_DIVERGED, _LOST) they are those
+    before the step. A step whose modified Newton fails is retried once from its start with a
+    fresh tangent."""
+    anchor_node, fairlead_node = kernel[23], kernel[24]  # the kernel tuple's last two
+    X, V, A, Xp, Vp, prediction, rows = state
+    rhs, step, band, base, X1, V1, A1, guess, x_hist, v_hist, scratch = work
+    N = X.shape[0]
+    t, h_before = history[0], history[1]
+    start = h_before == 0.0
+    if start:  # backward Euler to start (BDF2.coefficients)
+        c0, c1, c2 = 1.0 / h, -1.0 / h, 0.0
+    else:
+        w = h / h_before
+        c0, c1, c2 = (1 + 2 * w) / ((1 + w) * h), -(1 + w) / h, w * w / ((1 + w) * h)
+    for i in range(N):
+        for a in range(3):
+            x_hist[i, a] = c1 * X[i, a] + c2 * (X[i, a] if start else Xp[i, a])
+            v_hist[i, a] = c1 * V[i, a] + c2 * (V[i, a] if start else Vp[i, a])
+            guess[i, a] = X[i, a] + h * V[i, a] + 0.5 * h * h * A[i, a]  # Integrator.predict
+    for a in range(3):
+        guess[fairlead_node, a] = position[a]
+        guess[anchor_node, a] = anchor[a]
+    outcome = _DIVERGED
+    for _ in range(2 if settings[5] > 0.0 else 1):
+        X1[:] = guess
+        outcome = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv,
+                          lu_key, rhs, base, step, scratch, settings, counters)
+        if outcome != _DIVERGED:
+            break
+    if outcome != _CONVERGED:
+        return outcome
+    prediction[:] = guess
+    Xp[:] = X
+    Vp[:] = V
+    X[:] = X1
+    V[:] = V1
+    A[:] = A1
+    history[0], history[1], history[2] = t + h, h, h
+    counters[0] += 1
+    return _CONVERGED
+
+
+@njit(cache=True)
+def bdf2_steps(kernel, projector, state, history, times, fairlead, midpoints, anchor, settings, lu, ipiv,
+               lu_key, forces, counters):
     """BDF2 steps to ``times`` (m,) in turn, the fairlead at ``fairlead`` (m, 3) and the anchor at
-    ``anchor`` (3,). Returns (status, k): DONE with k = m, or FAILED / TOO_LONG at step k, the
-    state being that after step k - 1.
+    ``anchor`` (3,). Returns (status, k): DONE with k = m, or FAILED / TOO_LONG / PROJECTION at
+    step k, the state being that after step k - 1 or, when the first half of a halved step k
+    went through, after that half; history[3] is then the size of the attempt that stopped.
+
+    A step whose Newton fails is halved once here, as ``Integrator.step`` does: to its midpoint
+    (the fairlead at ``midpoints[k]``) and on to times[k]; if a half fails too, or the half would
+    be shorter than settings[8], or ``midpoints`` is empty, the loop stops (FAILED) for
+    ``Integrator.step`` to go on halving.
 
     kernel: the fused evaluator's arrays (``Marcher.kernel``); projector: (kind, grid x, y, z,
     the walk's tables and warm start, scratch) (``Marcher.projector``); state: (X, V, A, Xp, Vp,
     prediction, rows), each (N, 3), updated in place (Xp, Vp: the step before's; rows: M A + G
     with only the anchor and fairlead rows evaluated); history: [t, h of the step before (0 at
-    the start), the last step (0 if none)], updated; settings: [tolerance, increment tolerance,
-    residual scale, max iterations, max growth of a step over the last one, modified Newton
-    (0 or 1), contraction limit, smallest line-search damping]; lu (n (2 kl + ku + 1),) (see
-    ``cablefem.banded``), ipiv (n,), lu_key (1,): modified Newton's factors and the c0 they belong to
-    (NaN: none), kept between calls;
+    the start), the last step (0 if none), the stopping attempt's size], updated; settings:
+    [tolerance, increment tolerance, residual scale, max iterations, max growth of a step over
+    the last one, modified Newton (0 or 1), contraction limit, smallest line-search damping,
+    smallest step]; lu (n (2 kl + ku + 1),) (see ``cablefem.banded``), ipiv (n,), lu_key (1,):
+    modified Newton's factors and the c0 they belong to (NaN: none), kept between calls;
     forces (m, 2, 3): the line's forces on fairlead and anchor after each step; counters:
-    [steps, newton iterations, residual evaluations, tangents, LU factorisations], added to.
-    A step whose modified Newton fails is retried once from its start with a fresh tangent.
+    [steps, newton iterations, residual evaluations, tangents, LU factorisations, failed
+    attempts], added to.
     """
-    anchor_node, fairlead_node = kernel[23], kernel[24]  # the kernel tuple's last two
-    X, V, A, Xp, Vp, prediction, rows = state
+    anchor_node, fairlead_node = kernel[23], kernel[24]
+    X, rows = state[0], state[6]
     N = X.shape[0]
     nloc = kernel[0].shape[1]
-    rhs, step = np.empty(ipiv.shape[0]), np.empty(ipiv.shape[0])
-    band = np.zeros(lu.shape[0])
-    base = np.empty((N, 3))
-    X1, V1, A1, guess = np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3))
-    x_hist, v_hist = np.empty((N, 3)), np.empty((N, 3))
-    scratch = (np.zeros((7, 3)), np.zeros((4, 3, 3)), np.zeros((nloc, 3)), np.zeros((nloc, 3, nloc, 3)),
-               np.zeros((12, 3, 3)), np.zeros((12, 3)))
-    max_growth = settings[4]
-    tries = 2 if settings[5] > 0.0 else 1
+    work = (np.empty(ipiv.shape[0]), np.empty(ipiv.shape[0]), np.zeros(lu.shape[0]), np.empty((N, 3)),
+            np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)),
+            np.empty((N, 3)),
+            (np.zeros((7, 3)), np.zeros((4, 3, 3)), np.zeros((nloc, 3)), np.zeros((nloc, 3, nloc, 3)),
+             np.zeros((12, 3, 3)), np.zeros((12, 3))))
+    max_growth, min_step = settings[4], settings[8]
     for k in range(times.shape[0]):
-        t, h_before, last_h = history[0], history[1], history[2]
-        h = times[k] - t
-        if last_h > 0.0 and h > max_growth * last_h:
+        h = times[k] - history[0]
+        if history[2] > 0.0 and h > max_growth * history[2]:
             return TOO_LONG, k
-        start = h_before == 0.0
-        if start:  # backward Euler to start (BDF2.coefficients)
-            c0, c1, c2 = 1.0 / h, -1.0 / h, 0.0
-        else:
-            w = h / h_before
-            c0, c1, c2 = (1 + 2 * w) / ((1 + w) * h), -(1 + w) / h, w * w / ((1 + w) * h)
-        for i in range(N):
-            for a in range(3):
-                x_hist[i, a] = c1 * X[i, a] + c2 * (X[i, a] if start else Xp[i, a])
-                v_hist[i, a] = c1 * V[i, a] + c2 * (V[i, a] if start else Vp[i, a])
-                guess[i, a] = X[i, a] + h * V[i, a] + 0.5 * h * h * A[i, a]  # Integrator.predict
-        for a in range(3):
-            guess[fairlead_node, a] = fairlead[k, a]
-            guess[anchor_node, a] = anchor[a]
-        outcome = _DIVERGED
-        for _ in range(tries):
-            X1[:] = guess
-            outcome = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv,
-                              lu_key, rhs, base, step, scratch, settings, counters)
-            if outcome != _DIVERGED:
-                break
+        history[3] = h
+        outcome = _attempt(kernel, projector, state, history, h, fairlead[k], anchor, settings, lu, ipiv,
+                           lu_key, work, counters)
+        if outcome == _DIVERGED:
+            counters[5] += 1
+            if midpoints.shape[0] == 0 or 0.5 * h < min_step:
+                return FAILED, k
+            half = 0.5 * h  # Integrator.step's sizes: h / 2, then h - h / 2
+            history[3] = half
+            outcome = _attempt(kernel, projector, state, history, half, midpoints[k], anchor, settings, lu,
+                               ipiv, lu_key, work, counters)
+            if outcome == _CONVERGED:
+                history[3] = h - half
+                outcome = _attempt(kernel, projector, state, history, h - half, fairlead[k], anchor, settings,
+                                   lu, ipiv, lu_key, work, counters)
+            if outcome == _DIVERGED:
+                counters[5] += 1
+                return FAILED, k
         if outcome == _LOST:
             return PROJECTION, k
-        if outcome == _DIVERGED:
-            return FAILED, k
-        prediction[:] = guess
-        Xp[:] = X
-        Vp[:] = V
-        X[:] = X1
-        V[:] = V1
-        A[:] = A1
-        history[0], history[1], history[2] = times[k], h, h
         for a in range(3):
             forces[k, 0, a] = -rows[fairlead_node, a]
             forces[k, 1, a] = -rows[anchor_node, a]
-        counters[0] += 1
     return DONE, times.shape[0]
 
 
@@ -307,7 +347,7 @@ class Marcher:
         self.anchor = np.asarray(integ.system.line.anchor, dtype=float)
         self.settings = np.array([integ.tolerance, integ.increment_tolerance, integ.scale,
                                   integ.max_iterations, np.inf, float(integ.reuse_jacobian),
-                                  integ.CONTRACTION, integ.MIN_DAMPING])
+                                  integ.CONTRACTION, integ.MIN_DAMPING, integ.min_dt])
         self.lu = np.zeros(ev.n * (2 * ev.kl + ev.ku + 1))  # LAPACK's column-major band, flat
         self.ipiv = np.zeros(ev.n, dtype=np.int64)
         self.lu_key = np.full(1, np.nan)
@@ -342,21 +382,26 @@ class Marcher:
         return ((self.kind,) + grid + walker
                 + (np.zeros(n, dtype=np.int64), np.zeros((3, n)), np.zeros((3, n)), np.zeros((walk.OUTPUTS, n))))
 
-    def run(self, integ, times, fairlead, max_growth):
+    def run(self, integ, times, fairlead, max_growth, midpoints=None):
         """Steps of ``integ`` to ``times`` (m,) with the fairlead at ``fairlead`` (m, 3); no step
-        longer than ``max_growth`` times the last. Returns (status, k, forces (m, 2, 3))."""
+        longer than ``max_growth`` times the last. With ``midpoints`` (m, 3), the fairlead at
+        each step's midpoint (``BDF2.march``), a failed step is halved in the loop and the steps
+        and failed attempts are counted into ``integ`` here; without (``BDF2.attempt``),
+        ``Integrator.step`` halves and counts. Returns (status, k, forces (m, 2, 3), the size of
+        the attempt that stopped the loop)."""
         h_before, Xp, Vp = (0.0, integ.X, integ.V) if integ.previous is None else integ.previous
         state = tuple(np.array(x, dtype=float) for x in (integ.X, integ.V, integ.A, Xp, Vp, integ.X,
                                                          np.zeros_like(integ.X)))
-        history = np.array([integ.t, h_before, integ.last_h or 0.0])
+        history = np.array([integ.t, h_before, integ.last_h or 0.0, 0.0])
         settings = self.settings.copy()
         settings[4] = max_growth
         forces = np.empty((len(times), 2, 3))
-        counters = np.zeros(5, dtype=np.int64)
+        counters = np.zeros(6, dtype=np.int64)
         projector = self.projector(integ.X)
+        halves = np.zeros((0, 3)) if midpoints is None else np.ascontiguousarray(midpoints, dtype=float)
         status, k = bdf2_steps(self.kernel, projector, state, history, np.asarray(times, dtype=float),
-                               np.ascontiguousarray(fairlead, dtype=float), self.anchor, settings, self.lu,
-                               self.ipiv, self.lu_key, forces, counters)
+                               np.ascontiguousarray(fairlead, dtype=float), halves, self.anchor, settings,
+                               self.lu, self.ipiv, self.lu_key, forces, counters)
         if self.kind == TRIANGULATED and counters[2]:  # the walk's last call: the next one starts there
             origin, triangle, h = projector[9], projector[10], projector[12]
             self.seabed.walk_end(origin, triangle, h)
@@ -364,9 +409,12 @@ class Marcher:
         integ.nfev += int(counters[2])
         integ.njev += int(counters[3])
         integ.nlu += int(counters[4])
-        if k > 0:
+        if midpoints is not None:
+            integ.steps += int(counters[0])
+            integ.rejected += int(counters[5])
+        if counters[0] > 0:
             X, V, A, Xp, Vp, prediction, rows = state
             integ.X, integ.V, integ.A, integ.prediction, integ.residual_rows = X, V, A, prediction, rows
             integ.previous = (float(history[1]), Xp, Vp)
             integ.t, integ.last_h = float(history[0]), float(history[2])
-        return status, k, forces
+        return status, k, forces, float(history[3])
