@@ -11,14 +11,20 @@ first rows are the vertex positions, anchor first; for P3 and up the other
 rows are the hierarchical (integrated Legendre) coefficients of the element
 interiors. Everything that does not change between Newton iterations
 (basis values, quadrature, the sparsity pattern and the scatter maps) is
-computed once here.
+computed once here; what only the reference assembly reads (the
+vector bases of the forms, the CSR patterns of the tangent) on first use: a
+run on the compiled kernel never builds them. Values at quadrature points and
+the residual's scatter are sparse operators built from their arrays directly
+(from (row, col) triplets they were ~1 ms of a coarse run's ~4 ms set-up,
+verification/work_precision/README.md).
 """
 
 import warnings
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
-from skfem import Basis, BilinearForm, ElementLineP1, ElementLineP2, ElementLinePp, ElementVector, MeshLine
+from skfem import Basis, ElementLineP1, ElementLineP2, ElementLinePp, ElementVector, MeshLine
 
 
 def scalar_element(order):
@@ -30,11 +36,6 @@ def scalar_element(order):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         return ElementLinePp(order)
-
-
-@BilinearForm
-def _unit_mass(u, v, w):
-    return u * v
 
 
 class LineFEM:
@@ -49,10 +50,9 @@ class LineFEM:
         self.line = line
         self.order = line.order
         self.mesh = MeshLine(line.node_arc_lengths())
-        element = scalar_element(self.order)
+        self.element = element = scalar_element(self.order)
         n_gauss = quadrature_points or self.order + 1
-        self.basis = Basis(self.mesh, ElementVector(element, dim=3), intorder=2 * n_gauss - 1)
-        self.scalar_basis = Basis(self.mesh, element, quadrature=self.basis.quadrature)
+        self.scalar_basis = Basis(self.mesh, element, intorder=2 * n_gauss - 1)
         sb = self.scalar_basis
         self.n_dofs = sb.N
         self.n_vertices = self.mesh.p.shape[1]
@@ -62,9 +62,7 @@ class LineFEM:
         # the axial term with one Gauss point fewer: a polynomial element cannot follow a
         # curved line at constant stretch, and at full integration a stiff line "locks"
         # (spurious strain of order (kappa h)^2, against T/EA ~ 1e-4); p points remove it
-        reduced = Basis(self.mesh, element, intorder=max(1, 2 * self.order - 1))
-        self.reduced = Rule(reduced)
-        self.reduced_basis = Basis(self.mesh, ElementVector(element, dim=3), quadrature=reduced.quadrature)
+        self.reduced = Rule(Basis(self.mesh, element, intorder=max(1, 2 * self.order - 1)))
         self.phi, self.dphi, self.dx, self.s = self.full.phi, self.full.dphi, self.full.dx, self.full.s
         self.segment = line.element_segments()  # (nel,)
         self.anchor_dof = 0
@@ -72,25 +70,43 @@ class LineFEM:
         fixed = np.zeros(self.n_dofs, dtype=bool)
         fixed[[self.anchor_dof, self.fairlead_dof]] = True
         self.free_dofs = np.flatnonzero(~fixed)
-        self._build_scatter()
-        self.unit_mass = _unit_mass.assemble(sb).tocsr()  # int phi_i phi_j ds, (N, N)
+        self.free_vector_dofs = (3 * self.free_dofs[:, None] + np.arange(3)).ravel()
+
+    @cached_property
+    def basis(self):
+        """The vector basis at the full rule (scikit-fem forms, ``assembly = "forms"``)."""
+        return Basis(self.mesh, ElementVector(self.element, dim=3), quadrature=self.full.quadrature)
+
+    @cached_property
+    def reduced_basis(self):
+        """The vector basis at the reduced rule (scikit-fem forms)."""
+        return Basis(self.mesh, ElementVector(self.element, dim=3), quadrature=self.reduced.quadrature)
 
     # ------------------------------------------------------------------ maps
-    def _build_scatter(self):
-        nel, nloc = self.element_dofs.shape
-        # matrices: local entry (e, l, a, m, b) -> CSR data index of the full and free systems
+    def _entries(self):
+        """Global row and column (vector DOF) of every local matrix entry (e, l, a, m, b)."""
         comp = np.arange(3)
         rows = (3 * self.element_dofs[:, :, None, None, None] + comp[None, None, :, None, None])
         colz = (3 * self.element_dofs[:, None, None, :, None] + comp[None, None, None, None, :])
         rows, colz = np.broadcast_arrays(rows, colz)
-        self._full = _CsrPattern(rows.ravel(), colz.ravel(), 3 * self.n_dofs)
+        return rows.ravel(), colz.ravel()
+
+    @cached_property
+    def _full(self):
+        """CSR pattern of the full system: local entry -> data index."""
+        rows, colz = self._entries()
+        return _CsrPattern(rows, colz, 3 * self.n_dofs)
+
+    @cached_property
+    def _free(self):
+        """CSR pattern of the free unknowns (local entries touching a fixed DOF dropped)."""
+        rows, colz = self._entries()
+        free_vec = self.free_vector_dofs
         free_index = -np.ones(3 * self.n_dofs, dtype=np.int64)
-        free_vec = (3 * self.free_dofs[:, None] + comp).ravel()
         free_index[free_vec] = np.arange(free_vec.size)
-        self.free_vector_dofs = free_vec
-        r, c = free_index[rows.ravel()], free_index[colz.ravel()]
+        r, c = free_index[rows], free_index[colz]
         keep = (r >= 0) & (c >= 0)
-        self._free = _CsrPattern(r[keep], c[keep], free_vec.size, keep)
+        return _CsrPattern(r[keep], c[keep], free_vec.size, keep)
 
     # ----------------------------------------------------------- evaluation
     def at_quadrature(self, X, rule=None):
@@ -98,7 +114,8 @@ class LineFEM:
         each (3, nel, nq)."""
         rule = rule or self.full
         shape = (3,) + rule.s.shape
-        return (rule.value_op @ X).T.reshape(shape), (rule.derivative_op @ X).T.reshape(shape)
+        values, derivatives = rule.interpolate(X)
+        return values.T.reshape(shape), derivatives.T.reshape(shape)
 
     def evaluate(self, X, s):
         """Positions (n, 3) of state X (N, 3) at unstretched arc lengths s (n,) [m]."""
@@ -156,12 +173,7 @@ class LineFEM:
         """Residual rows (N, 3): int (flux . phi' - force . phi) ds over all elements, with
         force and flux (3, nel, nq) at the points of ``rule`` (default: full)."""
         rule = rule or self.full
-        out = np.zeros((self.n_dofs, 3))
-        if flux is not None:
-            out += rule.derivative_scatter @ flux.reshape(3, -1).T
-        if force is not None:
-            out -= rule.value_scatter @ force.reshape(3, -1).T
-        return out
+        return rule.scatter(None if force is None else -force, flux)
 
     def element_matrices(self, value_value=None, value_grad=None, grad_value=None, grad_grad=None,
                          rule=None, out=None):
@@ -195,33 +207,54 @@ class Rule:
 
     def __init__(self, scalar_basis):
         self.quadrature = scalar_basis.quadrature
-        dofs = scalar_basis.element_dofs.T  # (nel, nloc)
+        self.dofs = scalar_basis.element_dofs.T  # (nel, nloc)
+        self.n_dofs = scalar_basis.N
         self.phi = np.array([np.asarray(b[0]) for b in scalar_basis.basis])
         self.dphi = np.array([b[0].grad[0] for b in scalar_basis.basis])
         self.dx = scalar_basis.dx
         self.s = np.asarray(scalar_basis.global_coordinates())[0]
-        # weighted products of test and trial functions (nloc, nloc, nel, nq), in the order
-        # value-value, value-derivative, derivative-value, derivative-derivative
-        self.products = [np.einsum("leq,meq,eq->lmeq", a, b, self.dx)
-                         for a, b in ((self.phi, self.phi), (self.phi, self.dphi),
-                                      (self.dphi, self.phi), (self.dphi, self.dphi))]
-        # sparse interpolation (nel nq, N) and weighted scatter (N, nel nq) operators
-        nloc, nel, nq = self.phi.shape
-        rows = np.broadcast_to(np.arange(nel * nq).reshape(nel, 1, nq), (nel, nloc, nq)).ravel()
-        cols = np.broadcast_to(dofs[:, :, None], (nel, nloc, nq)).ravel()
-        shape = (nel * nq, scalar_basis.N)
 
-        def operator(values):
-            return sp.csr_matrix((np.moveaxis(values, 0, 1).ravel(), (rows, cols)), shape=shape)
+    @cached_property
+    def products(self):
+        """Weighted products of test and trial functions (nloc, nloc, nel, nq), in the order
+        value-value, value-derivative, derivative-value, derivative-derivative."""
+        return [np.einsum("leq,meq,eq->lmeq", a, b, self.dx)
+                for a, b in ((self.phi, self.phi), (self.phi, self.dphi), (self.dphi, self.phi),
+                             (self.dphi, self.dphi))]
 
-        self.value_op, self.derivative_op = operator(self.phi), operator(self.dphi)
-        weights = sp.diags(self.dx.ravel())
-        self.value_scatter = (self.value_op.T @ weights).tocsr()
-        self.derivative_scatter = (self.derivative_op.T @ weights).tocsr()
+    def _operators(self, basis_values):
+        """The interpolation operator (nel nq, N) of ``basis_values`` (nloc, nel, nq), CSR, and
+        its weighted transpose (N, nel nq), the scatter, CSC on the same index arrays: built
+        from their arrays directly (every row holds the element's nloc DOFs), ~10x cheaper
+        than from (row, col) triplets."""
+        nloc, nel, nq = basis_values.shape
+        indices = np.broadcast_to(self.dofs[:, None, :], (nel, nq, nloc)).ravel().astype(np.int32)
+        indptr = np.arange(0, nel * nq * nloc + 1, nloc, dtype=np.int32)
+        data = basis_values.transpose(1, 2, 0).ravel()
+        weighted = (basis_values * self.dx).transpose(1, 2, 0).ravel()
+        return (sp.csr_matrix((data, indices, indptr), shape=(nel * nq, self.n_dofs)),
+                sp.csc_matrix((weighted, indices, indptr), shape=(self.n_dofs, nel * nq)))
+
+    @cached_property
+    def _value_operators(self):
+        return self._operators(self.phi)
+
+    @cached_property
+    def _derivative_operators(self):
+        return self._operators(self.dphi)
 
     def interpolate(self, Y):
         """Values and s-derivatives (nel nq, k) at the rule's points of coefficients Y (N, k)."""
-        return self.value_op @ Y, self.derivative_op @ Y
+        return self._value_operators[0] @ Y, self._derivative_operators[0] @ Y
+
+    def scatter(self, values, derivatives):
+        """Rows (N, 3): int (derivatives . phi' + values . phi) ds, each (3, nel, nq) or None."""
+        out = np.zeros((self.n_dofs, 3))
+        if values is not None:
+            out += self._value_operators[1] @ values.reshape(3, -1).T
+        if derivatives is not None:
+            out += self._derivative_operators[1] @ derivatives.reshape(3, -1).T
+        return out
 
 
 class _CsrPattern:

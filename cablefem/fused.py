@@ -433,7 +433,7 @@ class FusedEvaluator:
             gap, normal, grad, dn = self.unused
         else:
             shape = fem.full.s.shape
-            r = (fem.full.value_op @ X).T.reshape((3,) + shape)
+            r = fem.full.interpolate(X)[0].T.reshape((3,) + shape)
             proj = self.system.seabed.project(r.reshape(3, -1).T)
             gap = proj.gap.reshape(shape)
             normal = proj.direction.T.reshape((3,) + shape)

@@ -343,7 +343,7 @@ class Marcher:
                        ev.free_order.astype(np.int64), np.arange(fem.n_elements, dtype=np.int64),
                        ends.astype(np.int64), int(fem.anchor_dof), int(fem.fairlead_dof))
         self.points = nel * nq
-        self.value_op = fem.full.value_op  # positions at the full quadrature points
+        self.rule = fem.full  # positions at its quadrature points: the walk's start
         self.anchor = np.asarray(integ.system.line.anchor, dtype=float)
         self.settings = np.array([integ.tolerance, integ.increment_tolerance, integ.scale,
                                   integ.max_iterations, np.inf, float(integ.reuse_jacobian),
@@ -375,7 +375,7 @@ class Marcher:
         zero1, zero2 = np.zeros(1), np.zeros((1, 1))
         grid = (self.seabed.x, self.seabed.y, self.seabed.z) if self.kind == GRID else (zero1, zero1, zero2)
         if self.kind == TRIANGULATED:
-            walker = self.seabed.walk_start(self.value_op @ X)
+            walker = self.seabed.walk_start(self.rule.interpolate(X)[0])
         else:  # unused, typed as the walk's own
             walker = (zero2, np.zeros((1, 3), dtype=np.int64), zero1, zero1, 0.0, np.zeros((3, n)),
                       np.zeros(n, dtype=np.int64), np.zeros(n, dtype=bool), np.zeros(n))
