@@ -306,8 +306,8 @@ def _assemble_loop(X, V, Acc, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, p
                 _point_loads(r, dr, v, acc, params[e], bed, _dot(flat, r) - plane[3], flat, flat, zero,
                              v_x, a_x, jac, f, Ab, Bb, M, u)
             else:
-                _point_loads(r, dr, v, acc, params[e], bed, gap[e, g], normal[:, e, g],
-                             grad_gap[:, e, g], dnormal[:, :, e, g], v_x, a_x, jac, f, Ab, Bb, M, u)
+                _point_loads(r, dr, v, acc, params[e], bed, gap[e, g], normal[e, g], grad_gap[e, g],
+                             dnormal[e, g], v_x, a_x, jac, f, Ab, Bb, M, u)
             w = dx[e, g]
             m = mass[e]
             for l in range(nloc):
@@ -409,7 +409,7 @@ class FusedEvaluator:
         self.plane = np.zeros(0)
         if isinstance(system.seabed, Plane):
             self.plane = np.append(system.seabed.normal, system.seabed.offset).astype(float)
-        self.unused = (np.zeros((1, 1)), np.zeros((3, 1, 1)), np.zeros((3, 1, 1)), np.zeros((3, 3, 1, 1)))
+        self.unused = (np.zeros((1, 1)), np.zeros((1, 1, 3)), np.zeros((1, 1, 3)), np.zeros((1, 1, 3, 3)))
 
     @classmethod
     def for_system(cls, system, mass):
@@ -433,14 +433,14 @@ class FusedEvaluator:
             gap, normal, grad, dn = self.unused
         else:
             shape = fem.full.s.shape
-            r = fem.full.interpolate(X)[0].T.reshape((3,) + shape)
-            proj = self.system.seabed.project(r.reshape(3, -1).T)
+            proj = self.system.seabed.project(fem.full.interpolate(X)[0])
             gap = proj.gap.reshape(shape)
-            normal = proj.direction.T.reshape((3,) + shape)
-            grad = proj.gap_gradient.T.reshape((3,) + shape)
-            dn = np.moveaxis(proj.direction_gradient, 0, -1).reshape((3, 3) + shape)
+            normal = proj.direction.reshape(shape + (3,))
+            grad = proj.gap_gradient.reshape(shape + (3,))
+            dn = proj.direction_gradient.reshape(shape + (3, 3))
         rows = np.zeros((fem.n_dofs, 3))
-        band = np.zeros((2 * self.kl + self.ku + 1, self.n)) if jacobian else np.zeros((1, 1))
+        # Fortran order, as LAPACK and the compiled steps hold it (one compiled kernel for both)
+        band = np.zeros((2 * self.kl + self.ku + 1, self.n) if jacobian else (2, 2), order="F")
         _assemble(X, V, A, self.dofs, self.position, self.full.phi, self.full.dphi, self.full.dx,
                   self.reduced.phi, self.reduced.dphi, self.reduced.dx, self.params, self.tension,
                   self.mass, self.bed, self.plane, np.ascontiguousarray(gap), np.ascontiguousarray(normal),

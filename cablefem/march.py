@@ -45,13 +45,17 @@ DONE, FAILED, TOO_LONG, PROJECTION = 0, 1, 2, 3
 PLANE, GRID, TRIANGULATED = 0, 1, 2
 #: what ``_newton`` returns
 _CONVERGED, _DIVERGED, _LOST = 0, 1, 2
+#: False and True as run-time values for the tangent flag: numba compiles a callee once more for
+#: every literal argument, and the kernel's copies for literal True and False took ~30 s of the
+#: first run's compilation
+_FLAG = np.array([False, True])
 
 
 @njit(cache=True)
 def _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal, derivatives):
     """Project the full quadrature points of X1 onto a grid or triangulated seabed into gap
-    (nel, nq), normal and, with ``derivatives`` (a tangent needs them), grad_gap (3, nel, nq) and
-    dnormal (3, 3, nel, nq), as ``FusedEvaluator.evaluate`` does through ``Seabed.project``; the
+    (nel, nq), normal and, with ``derivatives`` (a tangent needs them), grad_gap (nel, nq, 3) and
+    dnormal (nel, nq, 3, 3), as ``FusedEvaluator.evaluate`` does through ``Seabed.project``; the
     walk's warm start moves on to this call. Returns the number of points the walk did not
     place (-1: moved too far)."""
     (kind, gx, gy, gz, rows, across, safe, size, typical, origin, start, unheld, start_h, triangle, sth,
@@ -83,11 +87,11 @@ def _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal, derivativ
             p = e * nq + g
             gap[e, g] = out[0, p]
             for a in range(3):
-                normal[a, e, g] = out[1 + a, p]
+                normal[e, g, a] = out[1 + a, p]
                 if derivatives:
-                    grad_gap[a, e, g] = out[7 + a, p]
+                    grad_gap[e, g, a] = out[7 + a, p]
                     for b in range(3):
-                        dnormal[a, b, e, g] = out[10 + 3 * a + b, p]
+                        dnormal[e, g, a, b] = out[10 + 3 * a + b, p]
     return 0
 
 
@@ -170,7 +174,7 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
             break
         if fresh:
             if not with_tangent:  # the same point again, with the tangent (the walk places it)
-                _evaluate(kernel, projector, X1, V1, A1, c0, True, rows, band2, scratch, all_elements,
+                _evaluate(kernel, projector, X1, V1, A1, c0, _FLAG[1], rows, band2, scratch, all_elements,
                           counters)
             counters[3] += 1
             lu[:] = band
@@ -200,7 +204,7 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
                 0.0 <= rho < 1.0 and size * rho / (1 - rho) <= increment_tolerance):
             # the reactions need only the end rows: evaluate the two end elements
             _point(X1, x_hist, v_hist, c0, V1, A1)
-            if _evaluate(kernel, projector, X1, V1, A1, c0, False, rows, band2, scratch, end_elements,
+            if _evaluate(kernel, projector, X1, V1, A1, c0, _FLAG[0], rows, band2, scratch, end_elements,
                          counters) != 0:
                 return _LOST
             return _CONVERGED
@@ -334,8 +338,8 @@ class Marcher:
         if kind == PLANE:  # the kernel computes the gap itself
             gap, normal, grad_gap, dnormal = ev.unused
         else:  # written by ``_project`` each evaluation
-            gap, normal, grad_gap, dnormal = (np.zeros((nel, nq)), np.zeros((3, nel, nq)), np.zeros((3, nel, nq)),
-                                              np.zeros((3, 3, nel, nq)))
+            gap, normal, grad_gap, dnormal = (np.zeros((nel, nq)), np.zeros((nel, nq, 3)), np.zeros((nel, nq, 3)),
+                                              np.zeros((nel, nq, 3, 3)))
         ends = np.unique(np.flatnonzero(np.isin(ev.dofs, (fem.anchor_dof, fem.fairlead_dof)).any(axis=1)))
         self.kernel = (ev.dofs, ev.position, ev.full.phi, ev.full.dphi, ev.full.dx, ev.reduced.phi,
                        ev.reduced.dphi, ev.reduced.dx, ev.params, ev.tension, ev.mass, ev.bed, ev.plane,
