@@ -11,9 +11,9 @@ first rows are the vertex positions, anchor first; for P3 and up the other
 rows are the hierarchical (integrated Legendre) coefficients of the element
 interiors. Everything that does not change between Newton iterations
 (basis values, quadrature, the sparsity pattern and the scatter maps) is
-computed once here; what only the reference assembly reads (the
-vector bases of the forms, the CSR patterns of the tangent) on first use: a
-run on the compiled kernel never builds them. Values at quadrature points and
+computed once here, and what only the reference assembly reads (the
+vector bases of the forms, the CSR patterns of the tangent) on its first use:
+a run on the compiled kernel never builds them. Values at quadrature points and
 the residual's scatter are sparse operators built from their arrays directly
 (from (row, col) triplets they were ~1 ms of a coarse run's ~4 ms set-up,
 verification/work_precision/README.md).
