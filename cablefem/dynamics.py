@@ -34,13 +34,26 @@ class Integrator:
     the fairlead's position, velocity and acceleration (3,) at time t; dt [s]; tolerance:
     relative residual or relative increment, as in statics. ``compiled`` evaluates steps with
     ``cablefem.fused`` when the system's loads allow it (the same equations, compiled);
-    ``newton`` is "full", "modified" (LU factors kept across iterations and steps) or "auto".
+    ``newton`` is "full", "modified" (LU factors kept across iterations and steps) or "auto":
+    modified on the numpy path; with the compiled kernel, modified Newton step by step until
+    a step's kept factors have to be rebuilt (they contract slower than ``CONTRACTION``) or the
+    step fails, then full Newton for the next ``AUTO_FULL_STEPS`` attempts.
     """
 
     name = "integrator"
 
     #: contraction factor of modified Newton above which the tangent is rebuilt
     CONTRACTION = 0.3
+    #: "auto" Newton with the compiled kernel: attempts in full Newton after a modified one had
+    #: to rebuild its factors or failed. Modified Newton saves the tangent and its LU where the
+    #: tangent changes slowly (work-precision slow surge: 0.81x full Newton's time) and costs
+    #: where friction, contact and slack switch (snap: 1.35x). With 20, against full Newton:
+    #: coarse snap runs (dt 0.16 s) the same time, P2 x 40 snap at dt 0.04 s 1.01x, slow surge
+    #: 0.83-0.88x, the scenes' defaults (P1 x 40, dt 0.01 s, tolerance 1e-8) 0.88x in snap and
+    #: 0.64x in slow surge; with 5, slow surge 0.78x but snap 1.07-1.15x; switching only after
+    #: failures (not rebuilds) cost coarse snap runs 10-13 %. A failed modified attempt is
+    #: redone in full Newton: "auto" halves a step only where full Newton fails from its start
+    AUTO_FULL_STEPS = 20
     #: smallest fraction of a Newton step the residual line search tries
     MIN_DAMPING = 1.0 / 16.0
     #: largest ratio of a step to the one before: variable-step BDF2 is zero-stable for ratios
@@ -88,6 +101,8 @@ class Integrator:
         if newton not in ("auto", "full", "modified"):
             raise ValueError(f"newton must be auto, full or modified, got {newton!r}")
         self.reuse_jacobian = newton == "modified" or (newton == "auto" and self.fused is None)
+        self.switching = newton == "auto" and self.fused is not None
+        self.full_steps_left = 0  # "auto": attempts still to run in full Newton
         # positions converge when the force their error makes, EA / h * dx, is below the
         # tolerance times the weight of an element: dx <= tol w h^2 / EA (floored at round-off)
         h = float(np.min(np.diff(fem.mesh.p[0])))
@@ -135,13 +150,30 @@ class Integrator:
         A[fem.free_dofs] = spla.spsolve(K.tocsc(), rhs).reshape(-1, 3)
         return A
 
-    def newton(self, X1, point, factors, t_eval, retry=True):
+    def newton(self, X1, point, factors, t_eval):
+        """Newton on one attempted step (``_newton``), full or modified as ``newton`` says;
+        "auto" with the compiled kernel chooses here, attempt by attempt (see the class)."""
+        reuse = self.reuse_jacobian or (self.switching and self.full_steps_left <= 0)
+        X, rows, ok, trouble = self._newton(X1, point, factors, t_eval, reuse)
+        if reuse and not ok:  # once more from the start: modified with a fresh tangent, or (auto) full
+            trouble = True
+            self._lu = None
+            X, rows, ok, _ = self._newton(X1, point, factors, t_eval, self.reuse_jacobian)
+        if self.switching:
+            if reuse and trouble:
+                self.full_steps_left = self.AUTO_FULL_STEPS
+            elif not reuse:
+                self.full_steps_left -= 1
+        return X, rows, ok
+
+    def _newton(self, X1, point, factors, t_eval, reuse):
         """Solve the step residual M A + G = 0 on the free rows for the new positions X1 (N, 3).
 
         point(X1) -> (X, V, A) where the loads are evaluated; factors = (v_x, a_x, g_x) with
-        d(X, V, A)/dX1 = g_x (1, v_x, a_x). Returns (X1, rows, ok), rows = M A + G (N, 3).
+        d(X, V, A)/dX1 = g_x (1, v_x, a_x). Returns (X1, rows, ok, refreshed), rows = M A + G
+        (N, 3), refreshed: kept factors were rebuilt for slow contraction.
 
-        With ``reuse_jacobian`` the LU factors of the tangent are kept across iterations and
+        With ``reuse`` the LU factors of the tangent are kept across iterations and
         steps (modified Newton) and rebuilt when the step size changes, when the iteration
         contracts slower than ``CONTRACTION`` or when it fails; an iteration converges when
         the residual is below the tolerance or when the increment, extrapolated by the
@@ -158,10 +190,9 @@ class Integrator:
         """
         free = self.fem.free_dofs
         v_x, a_x, g_x = factors
-        start = X1
         rows = None
-        fresh = not self.reuse_jacobian or self._lu is None or self._lu_factors != factors
-        previous = None
+        fresh = not reuse or self._lu is None or self._lu_factors != factors
+        previous, refreshed = None, False
         base, damping = None, 1.0  # (X1, norm, dX) of the last Newton step taken, its damping
         for _ in range(self.max_iterations):
             X, V, A = point(X1)
@@ -171,7 +202,7 @@ class Integrator:
             rows, tangent = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, with_tangent)
             norm = np.linalg.norm(rows[free]) / self.scale
             if norm <= self.tolerance and previous is not None:
-                return X1, rows, True
+                return X1, rows, True, refreshed
             if base is not None and damping > self.MIN_DAMPING and not norm <= (1 - 1e-4 * damping) * base[1]:
                 damping *= 0.5
                 X1 = base[0].copy()
@@ -201,14 +232,12 @@ class Integrator:
                     rho is not None and rho < 1 and size * rho / (1 - rho) <= self.increment_tolerance):
                 X, V, A = point(X1)
                 rows, _ = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, False)
-                return X1, rows, True
-            fresh = not self.reuse_jacobian or (rho is not None and rho > self.CONTRACTION)
+                return X1, rows, True, refreshed
+            fresh = not reuse or (rho is not None and rho > self.CONTRACTION)
+            refreshed = refreshed or (reuse and fresh)
             previous = size
-        if self.reuse_jacobian and retry:
-            self._lu = None  # retry the step once, from its start, with a fresh tangent
-            return self.newton(start, point, factors, t_eval, retry=False)
         self._lu = None
-        return X1, rows, False
+        return X1, rows, False, refreshed
 
     def rows_and_tangent(self, X, V, A, t, v_x, a_x, jacobian):
         """Rows M A + G (N, 3) at the evaluation point and, with ``jacobian``, the tangent of the

@@ -129,11 +129,12 @@ def _evaluate(kernel, projector, X1, V1, A1, c0, tangent, rows, band2, scratch, 
 
 @njit(cache=True)
 def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key, rhs, base,
-            step, scratch, settings, counters):
+            step, scratch, settings, counters, reuse, refreshed):
     """Newton on the step residual M A + G = 0 from X1 (updated in place), as
-    ``Integrator.newton``: full (a fresh tangent each iteration) or, with settings[5] > 0,
+    ``Integrator._newton``: full (a fresh tangent each iteration) or, with ``reuse``,
     modified (the LU factors ``lu``/``ipiv`` kept across iterations and steps while the step's
-    c0 is ``lu_key[0]``, rebuilt when the iteration contracts slower than settings[6]).
+    c0 is ``lu_key[0]``, rebuilt when the iteration contracts slower than settings[6]; then
+    refreshed[0] is set to 1)).
     ``band`` (the size of ``lu``) takes a fresh tangent before it is factored into ``lu``; a step
     that does not reduce the residual norm is halved down to settings[7] (Armijo), from
     ``base`` (N, 3) along ``step`` (n,) (scratch).
@@ -141,7 +142,7 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
     _LOST when the seabed projection (``projector``, see ``bdf2_steps``) could not place a point."""
     kl, ku, free_nodes, free_order, all_elements, end_elements = kernel[17:23]
     tolerance, increment_tolerance, scale = settings[0], settings[1], settings[2]
-    reuse, contraction = settings[5] > 0.0, settings[6]
+    contraction = settings[6]
     nb = rhs.shape[0]
     ld = 2 * kl + ku + 1
     band2 = band.reshape((nb, ld)).T  # the (ld, nb) column-major view the assembly writes
@@ -209,6 +210,8 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
                 return _LOST
             return _CONVERGED
         fresh = not reuse or rho > contraction
+        if reuse and fresh:
+            refreshed[0] = 1.0
         previous = size
     lu_key[0] = np.nan
     return _DIVERGED
@@ -222,7 +225,7 @@ def _attempt(kernel, projector, state, history, h, position, anchor, settings, l
     ``BDF2.attempt`` (t + h). On _CONVERGED the state and history move on to t + h and ``rows``
     holds the reactions; otherwise (_DIVERGED, _LOST) they are those
     before the step. A step whose modified Newton fails is retried once from its start with a
-    fresh tangent."""
+    fresh tangent ("auto": in full Newton)."""
     anchor_node, fairlead_node = kernel[23], kernel[24]  # the kernel tuple's last two
     X, V, A, Xp, Vp, prediction, rows = state
     rhs, step, band, base, X1, V1, A1, guess, x_hist, v_hist, scratch = work
@@ -242,13 +245,23 @@ def _attempt(kernel, projector, state, history, h, position, anchor, settings, l
     for a in range(3):
         guess[fairlead_node, a] = position[a]
         guess[anchor_node, a] = anchor[a]
-    outcome = _DIVERGED
-    for _ in range(2 if settings[5] > 0.0 else 1):
+    # full or modified Newton; "auto" (settings[5] == 2): modified unless lu_key[1] attempts are
+    # still to run in full Newton, as Integrator.newton chooses
+    reuse = settings[5] == 1.0 or (settings[5] == 2.0 and lu_key[1] <= 0.0)
+    refreshed = np.zeros(1)
+    X1[:] = guess
+    outcome = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key, rhs,
+                      base, step, scratch, settings, counters, reuse, refreshed)
+    if reuse and outcome == _DIVERGED:  # once more from the start: modified with a fresh tangent, or full
+        refreshed[0] = 1.0
         X1[:] = guess
-        outcome = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv,
-                          lu_key, rhs, base, step, scratch, settings, counters)
-        if outcome != _DIVERGED:
-            break
+        outcome = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key,
+                          rhs, base, step, scratch, settings, counters, settings[5] == 1.0, refreshed)
+    if settings[5] == 2.0 and outcome != _LOST:
+        if reuse and refreshed[0] > 0.0:
+            lu_key[1] = settings[9]
+        elif not reuse:
+            lu_key[1] -= 1.0
     if outcome != _CONVERGED:
         return outcome
     prediction[:] = guess
@@ -281,9 +294,10 @@ def bdf2_steps(kernel, projector, state, history, times, fairlead, midpoints, an
     with only the anchor and fairlead rows evaluated); history: [t, h of the step before (0 at
     the start), the last step (0 if none), the stopping attempt's size], updated; settings:
     [tolerance, increment tolerance, residual scale, max iterations, max growth of a step over
-    the last one, modified Newton (0 or 1), contraction limit, smallest line-search damping,
-    smallest step]; lu (n (2 kl + ku + 1),) (see ``cablefem.banded``), ipiv (n,), lu_key (1,):
-    modified Newton's factors and the c0 they belong to (NaN: none), kept between calls;
+    the last one, Newton (0 full, 1 modified, 2 auto), contraction limit, smallest line-search
+    damping, smallest step, auto's full-Newton attempts after trouble]; lu (n (2 kl + ku + 1),)
+    (see ``cablefem.banded``), ipiv (n,), lu_key (2,): the c0 modified Newton's factors belong
+    to (NaN: none) and auto's full-Newton attempts still to run, kept between calls;
     forces (m, 2, 3): the line's forces on fairlead and anchor after each step; counters:
     [steps, newton iterations, residual evaluations, tangents, LU factorisations, failed
     attempts], added to.
@@ -350,11 +364,12 @@ class Marcher:
         self.rule = fem.full  # positions at its quadrature points: the walk's start
         self.anchor = np.asarray(integ.system.line.anchor, dtype=float)
         self.settings = np.array([integ.tolerance, integ.increment_tolerance, integ.scale,
-                                  integ.max_iterations, np.inf, float(integ.reuse_jacobian),
-                                  integ.CONTRACTION, integ.MIN_DAMPING, integ.min_dt])
+                                  integ.max_iterations, np.inf,
+                                  2.0 if integ.switching else float(integ.reuse_jacobian),
+                                  integ.CONTRACTION, integ.MIN_DAMPING, integ.min_dt, integ.AUTO_FULL_STEPS])
         self.lu = np.zeros(ev.n * (2 * ev.kl + ev.ku + 1))  # LAPACK's column-major band, flat
         self.ipiv = np.zeros(ev.n, dtype=np.int64)
-        self.lu_key = np.full(1, np.nan)
+        self.lu_key = np.full(2, np.nan)
 
     @classmethod
     def for_integrator(cls, integ):
@@ -403,9 +418,11 @@ class Marcher:
         counters = np.zeros(6, dtype=np.int64)
         projector = self.projector(integ.X)
         halves = np.zeros((0, 3)) if midpoints is None else np.ascontiguousarray(midpoints, dtype=float)
+        self.lu_key[1] = integ.full_steps_left  # "auto" Newton's state, shared with the Python path
         status, k = bdf2_steps(self.kernel, projector, state, history, np.asarray(times, dtype=float),
                                np.ascontiguousarray(fairlead, dtype=float), halves, self.anchor, settings,
                                self.lu, self.ipiv, self.lu_key, forces, counters)
+        integ.full_steps_left = int(self.lu_key[1])
         if self.kind == TRIANGULATED and counters[2]:  # the walk's last call: the next one starts there
             origin, triangle, h = projector[9], projector[10], projector[12]
             self.seabed.walk_end(origin, triangle, h)
