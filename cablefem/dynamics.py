@@ -47,7 +47,7 @@ class Integrator:
     #: "auto" Newton with the compiled kernel: attempts in full Newton after a modified one had
     #: to rebuild its factors or failed. Modified Newton saves the tangent and its LU where the
     #: tangent changes slowly (work-precision slow surge: 0.81x full Newton's time) and costs
-    #: where friction, contact and slack switch (snap: 1.35x). With 20, against full Newton:
+    #: where friction, contact and slack switch (snap: 1.36x). With 20, against full Newton:
     #: coarse snap runs (dt 0.16 s) the same time, P2 x 40 snap at dt 0.04 s 1.01x, slow surge
     #: 0.83-0.88x, the scenes' defaults (P1 x 40, dt 0.01 s, tolerance 1e-8) 0.88x in snap and
     #: 0.64x in slow surge; with 5, slow surge 0.78x but snap 1.07-1.15x; switching only after
