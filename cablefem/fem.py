@@ -225,8 +225,8 @@ class Rule:
     def _operators(self, basis_values):
         """The interpolation operator (nel nq, N) of ``basis_values`` (nloc, nel, nq), CSR, and
         its weighted transpose (N, nel nq), the scatter, CSC on the same index arrays: built
-        from their arrays directly (every row holds the element's nloc DOFs), ~10x cheaper
-        than from (row, col) triplets."""
+        from their arrays directly (every row holds the element's nloc DOFs), 6-8x cheaper
+        than from (row, col) triplets (27 against 223 us for P1 x 14)."""
         nloc, nel, nq = basis_values.shape
         indices = np.broadcast_to(self.dofs[:, None, :], (nel, nq, nloc)).ravel().astype(np.int32)
         indptr = np.arange(0, nel * nq * nloc + 1, nloc, dtype=np.int32)

@@ -439,7 +439,8 @@ class FusedEvaluator:
             grad = proj.gap_gradient.reshape(shape + (3,))
             dn = proj.direction_gradient.reshape(shape + (3, 3))
         rows = np.zeros((fem.n_dofs, 3))
-        # Fortran order, as LAPACK and the compiled steps hold it (one compiled kernel for both)
+        # Fortran order, as LAPACK and the compiled steps hold it (one compiled kernel for both;
+        # the unused band is 2 x 2, since numba would type a 1 x 1 array as C-ordered)
         band = np.zeros((2 * self.kl + self.ku + 1, self.n) if jacobian else (2, 2), order="F")
         _assemble(X, V, A, self.dofs, self.position, self.full.phi, self.full.dphi, self.full.dx,
                   self.reduced.phi, self.reduced.dphi, self.reduced.dx, self.params, self.tension,

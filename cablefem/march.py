@@ -129,17 +129,17 @@ def _evaluate(kernel, projector, X1, V1, A1, c0, tangent, rows, band2, scratch, 
 
 @njit(cache=True)
 def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key, rhs, base,
-            step, scratch, settings, counters, reuse, refreshed):
+            step, scratch, settings, counters, reuse):
     """Newton on the step residual M A + G = 0 from X1 (updated in place), as
     ``Integrator._newton``: full (a fresh tangent each iteration) or, with ``reuse``,
     modified (the LU factors ``lu``/``ipiv`` kept across iterations and steps while the step's
-    c0 is ``lu_key[0]``, rebuilt when the iteration contracts slower than settings[6]; then
-    refreshed[0] is set to 1)).
+    c0 is ``lu_key[0]``, rebuilt when the iteration contracts slower than settings[6]).
     ``band`` (the size of ``lu``) takes a fresh tangent before it is factored into ``lu``; a step
     that does not reduce the residual norm is halved down to settings[7] (Armijo), from
     ``base`` (N, 3) along ``step`` (n,) (scratch).
-    Returns _CONVERGED, with V1, A1 and the end rows of ``rows`` at the solution, _DIVERGED, or
-    _LOST when the seabed projection (``projector``, see ``bdf2_steps``) could not place a point."""
+    Returns (outcome, refreshed): _CONVERGED, with V1, A1 and the end rows of ``rows`` at the
+    solution, _DIVERGED, or _LOST when the seabed projection (``projector``, see ``bdf2_steps``)
+    could not place a point; refreshed: kept factors were rebuilt for slow contraction."""
     kl, ku, free_nodes, free_order, all_elements, end_elements = kernel[17:23]
     tolerance, increment_tolerance, scale = settings[0], settings[1], settings[2]
     contraction = settings[6]
@@ -148,7 +148,7 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
     band2 = band.reshape((nb, ld)).T  # the (ld, nb) column-major view the assembly writes
     multipliers = np.empty(kl + 1)
     fresh = not reuse or lu_key[0] != c0
-    previous = -1.0  # none yet
+    previous, refreshed = -1.0, False  # none yet
     base_norm, damping, min_damping = -1.0, 1.0, settings[7]  # base_norm < 0: no step taken yet
     for _ in range(int(settings[3])):
         _point(X1, x_hist, v_hist, c0, V1, A1)
@@ -156,14 +156,14 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
         with_tangent = fresh and damping == 1.0 and (base_norm < 0.0 or base_norm > np.sqrt(tolerance))
         if _evaluate(kernel, projector, X1, V1, A1, c0, with_tangent, rows, band2, scratch, all_elements,
                      counters) != 0:
-            return _LOST
+            return _LOST, refreshed
         norm = 0.0
         for i in free_nodes:
             for a in range(3):
                 norm += rows[i, a] * rows[i, a]
         norm = np.sqrt(norm) / scale
         if norm <= tolerance and previous >= 0.0:
-            return _CONVERGED
+            return _CONVERGED, refreshed
         if base_norm >= 0.0 and damping > min_damping and not norm <= (1 - 1e-4 * damping) * base_norm:
             damping *= 0.5
             X1[:] = base
@@ -207,14 +207,13 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
             _point(X1, x_hist, v_hist, c0, V1, A1)
             if _evaluate(kernel, projector, X1, V1, A1, c0, _FLAG[0], rows, band2, scratch, end_elements,
                          counters) != 0:
-                return _LOST
-            return _CONVERGED
+                return _LOST, refreshed
+            return _CONVERGED, refreshed
         fresh = not reuse or rho > contraction
-        if reuse and fresh:
-            refreshed[0] = 1.0
+        refreshed = refreshed or (reuse and fresh)
         previous = size
     lu_key[0] = np.nan
-    return _DIVERGED
+    return _DIVERGED, refreshed
 
 
 @njit(cache=True)
@@ -248,17 +247,16 @@ def _attempt(kernel, projector, state, history, h, position, anchor, settings, l
     # full or modified Newton; "auto" (settings[5] == 2): modified unless lu_key[1] attempts are
     # still to run in full Newton, as Integrator.newton chooses
     reuse = settings[5] == 1.0 or (settings[5] == 2.0 and lu_key[1] <= 0.0)
-    refreshed = np.zeros(1)
     X1[:] = guess
-    outcome = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key, rhs,
-                      base, step, scratch, settings, counters, reuse, refreshed)
+    outcome, trouble = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key,
+                               rhs, base, step, scratch, settings, counters, reuse)
     if reuse and outcome == _DIVERGED:  # once more from the start: modified with a fresh tangent, or full
-        refreshed[0] = 1.0
+        trouble = True
         X1[:] = guess
-        outcome = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key,
-                          rhs, base, step, scratch, settings, counters, settings[5] == 1.0, refreshed)
+        outcome, _ = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key,
+                             rhs, base, step, scratch, settings, counters, settings[5] == 1.0)
     if settings[5] == 2.0 and outcome != _LOST:
-        if reuse and refreshed[0] > 0.0:
+        if reuse and trouble:
             lu_key[1] = settings[9]
         elif not reuse:
             lu_key[1] -= 1.0
