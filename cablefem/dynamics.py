@@ -24,7 +24,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from .errors import ConvergenceError
-from .march import DONE, FAILED, PROJECTION, Marcher
+from .march import DONE, FAILED, FRACTIONS, PROJECTION, Marcher
 
 
 class Integrator:
@@ -194,11 +194,15 @@ class Integrator:
         fresh = not reuse or self._lu is None or self._lu_factors != factors
         previous, refreshed = None, False
         base, damping = None, 1.0  # (X1, norm, dX) of the last Newton step taken, its damping
+        damped = False  # the point that step started from was reached by a damped step
         for _ in range(self.max_iterations):
             X, V, A = point(X1)
             # the tangent comes with the residual unless Newton's quadratic convergence from the
-            # last residual promises that this one converges (then it is evaluated if not)
-            with_tangent = fresh and damping == 1.0 and (base is None or base[1] > np.sqrt(self.tolerance))
+            # last residual promises that this one converges, or the step starts from a damped
+            # point (regimes switching: its full step is mostly rejected); it is evaluated then
+            # if the point is taken and has not converged
+            with_tangent = fresh and damping == 1.0 and not damped and (
+                base is None or base[1] > np.sqrt(self.tolerance))
             rows, tangent = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, with_tangent)
             norm = np.linalg.norm(rows[free]) / self.scale
             if norm <= self.tolerance and previous is not None:
@@ -222,7 +226,7 @@ class Integrator:
             dX = self.solve(self._lu, rows)
             if not np.all(np.isfinite(dX)):
                 break
-            base, damping = (X1, norm, dX), 1.0
+            base, damping, damped = (X1, norm, dX), 1.0, damping < 1.0
             X1 = X1.copy()
             X1[free] += dX
             self.newton_iterations += 1
@@ -393,19 +397,22 @@ class BDF2(Integrator):
             return super().march(times)
         times = np.asarray(times, dtype=float)
         fairlead = self.fairlead_positions(times)
-        # the fairlead halfway through each step, for a step the compiled loop halves
-        midpoints = self.fairlead_positions(0.5 * (np.append(self.t, times[:-1]) + times))
+        # the fairlead where the compiled loop may split each step (halved on failure)
+        starts = np.append(self.t, times[:-1])
+        split = np.arange(1, FRACTIONS) / FRACTIONS
+        fractions = self.fairlead_positions((starts[:, None] + split * (times - starts)[:, None]).ravel())
+        fractions = fractions.reshape(len(times), FRACTIONS - 1, 3)
         forces = np.empty((len(times), 2, 3))
         k = 0
         while k < len(times):
-            status, done, forces[k:], stopped = self.marcher.run(
-                self, times[k:], fairlead[k:], self.MAX_GROWTH * (1 + self.STRETCH), midpoints[k:])
+            status, done, forces[k:], stopped = self.marcher.run(self, times[k:], fairlead[k:], fractions[k:])
             k += done
             if status == DONE:
                 break
-            # Newton failed at a half step too (``step`` halves on), the step would grow too
-            # fast (``step`` grows it back by doubling) or the walk lost a point (``attempt``
-            # projects it in Python): this step goes through ``step``, the rest resume here
+            # a halving would go deeper than the loop's split points (``step`` halves on), an
+            # attempt would not end on one of them (a step growing back after a short step to
+            # another output time) or the walk lost a point (``attempt`` projects it in
+            # Python): this step goes on through ``step``, the rest resume here
             first = {FAILED: 0.5 * stopped, PROJECTION: stopped}.get(status)
             try:
                 if first is not None and first < self.min_dt:
@@ -433,7 +440,7 @@ class BDF2(Integrator):
     def attempt(self, h):
         if self.marcher is not None:
             t1 = self.t + h
-            status, done, _, _ = self.marcher.run(self, [t1], self.boundary(t1)[0][None], np.inf)
+            status, done, _, _ = self.marcher.run(self, [t1], self.boundary(t1)[0][None])
             if status != PROJECTION:
                 return done == 1
             # the compiled walk lost a point: this attempt projects in Python (with its search)

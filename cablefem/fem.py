@@ -38,6 +38,12 @@ def scalar_element(order):
         return ElementLinePp(order)
 
 
+def gauss_line(points):
+    """Gauss-Legendre rule of ``points`` points on the reference element [0, 1]: (X (1, n), W (n,))."""
+    x, w = np.polynomial.legendre.leggauss(points)
+    return 0.5 * (x + 1.0)[None, :], 0.5 * w
+
+
 class LineFEM:
     """Mesh, bases, quadrature data and assembly maps of one ``Line``.
 
@@ -61,8 +67,10 @@ class LineFEM:
         self.full = Rule(sb)
         # the axial term with one Gauss point fewer: a polynomial element cannot follow a
         # curved line at constant stretch, and at full integration a stiff line "locks"
-        # (spurious strain of order (kappa h)^2, against T/EA ~ 1e-4); p points remove it
-        self.reduced = Rule(Basis(self.mesh, element, intorder=max(1, 2 * self.order - 1)))
+        # (spurious strain of order (kappa h)^2, against T/EA ~ 1e-4); p points remove it. The
+        # rule is built here: scikit-fem's line rules have two points at least, and P1's strain
+        # is constant along an element, so its second point only doubled the axial work
+        self.reduced = Rule(Basis(self.mesh, element, quadrature=gauss_line(self.order)))
         self.phi, self.dphi, self.dx, self.s = self.full.phi, self.full.dphi, self.full.dx, self.full.s
         self.segment = line.element_segments()  # (nel,)
         self.anchor_dof = 0

@@ -51,6 +51,21 @@ _CONVERGED, _DIVERGED, _LOST = 0, 1, 2
 _FLAG = np.array([False, True])
 
 
+@njit(cache=True, _nrt=False)
+def _copy_rows(dst, src):
+    """dst[:] = src for (N, 3) arrays, as a loop (a slice copy would need numba's runtime)."""
+    for i in range(dst.shape[0]):
+        for a in range(3):
+            dst[i, a] = src[i, a]
+
+
+@njit(cache=True, _nrt=False)
+def _copy_flat(dst, src):
+    """dst[:] = src for 1-d arrays, as a loop."""
+    for i in range(dst.shape[0]):
+        dst[i] = src[i]
+
+
 @njit(cache=True)
 def _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal, derivatives):
     """Project the full quadrature points of X1 onto a grid or triangulated seabed into gap
@@ -78,10 +93,12 @@ def _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal, derivativ
                             WALK_STEPS, True, mode, triangle, sth, out)
         if lost != 0:
             return lost
-        origin[:] = xyz
-        start[:] = triangle
-        start_h[:] = sth[2]
-        unheld[:] = False
+        for p in range(xyz.shape[1]):  # the next call starts here (loops: no temporary copies)
+            for a in range(3):
+                origin[a, p] = xyz[a, p]
+            start[p] = triangle[p]
+            start_h[p] = sth[2, p]
+            unheld[p] = False
     for e in range(nel):
         for g in range(nq):
             p = e * nq + g
@@ -95,7 +112,7 @@ def _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal, derivativ
     return 0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _point(X1, x_hist, v_hist, c0, V1, A1):
     """V and A of BDF2 at positions X1: V = c0 X1 + x_hist, A = c0 V + v_hist."""
     for i in range(X1.shape[0]):
@@ -104,7 +121,7 @@ def _point(X1, x_hist, v_hist, c0, V1, A1):
             A1[i, a] = c0 * V1[i, a] + v_hist[i, a]
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _evaluate(kernel, projector, X1, V1, A1, c0, tangent, rows, band2, scratch, elements, counters):
     """The step residual M A + G at X1, V1, A1 into ``rows`` over ``elements`` and, with
     ``tangent``, its banded tangent into ``band2`` (both zeroed first), the seabed projected first
@@ -116,18 +133,18 @@ def _evaluate(kernel, projector, X1, V1, A1, c0, tangent, rows, band2, scratch, 
         lost = _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal, tangent)
         if lost != 0:
             return lost
-    vec, blk, Re, Ke, M, u = scratch
+    vec, blk, Re, Ke, M, u = scratch[:6]
     rows[:] = 0.0
     if tangent:
         band2.T[:] = 0.0  # the contiguous (nb, ld) view: a memset, not a strided walk
     _assemble_loop(X1, V1, A1, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass, bed,
                    plane, gap, normal, grad_gap, dnormal, c0, c0 * c0, tangent, rows, band2, kl, ku,
-                   position.max(), vec, blk, Re, Ke, M, u, elements)
+                   position.shape[0] - 1, vec, blk, Re, Ke, M, u, elements)  # position: a permutation
     counters[2] += 1
     return 0
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key, rhs, base,
             step, scratch, settings, counters, reuse):
     """Newton on the step residual M A + G = 0 from X1 (updated in place), as
@@ -146,14 +163,17 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
     nb = rhs.shape[0]
     ld = 2 * kl + ku + 1
     band2 = band.reshape((nb, ld)).T  # the (ld, nb) column-major view the assembly writes
-    multipliers = np.empty(kl + 1)
+    multipliers = scratch[6]
     fresh = not reuse or lu_key[0] != c0
     previous, refreshed = -1.0, False  # none yet
     base_norm, damping, min_damping = -1.0, 1.0, settings[7]  # base_norm < 0: no step taken yet
+    damped = False  # the step taken started from a point a damped step reached
     for _ in range(int(settings[3])):
         _point(X1, x_hist, v_hist, c0, V1, A1)
-        # the tangent with the residual unless the last residual promises convergence (Newton)
-        with_tangent = fresh and damping == 1.0 and (base_norm < 0.0 or base_norm > np.sqrt(tolerance))
+        # the tangent with the residual unless the last residual promises convergence (Newton) or
+        # the step started from a damped point (its full step is mostly rejected)
+        with_tangent = fresh and damping == 1.0 and not damped and (
+            base_norm < 0.0 or base_norm > np.sqrt(tolerance))
         if _evaluate(kernel, projector, X1, V1, A1, c0, with_tangent, rows, band2, scratch, all_elements,
                      counters) != 0:
             return _LOST, refreshed
@@ -166,7 +186,7 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
             return _CONVERGED, refreshed
         if base_norm >= 0.0 and damping > min_damping and not norm <= (1 - 1e-4 * damping) * base_norm:
             damping *= 0.5
-            X1[:] = base
+            _copy_rows(X1, base)
             for j in range(free_order.shape[0]):
                 for a in range(3):
                     X1[free_order[j], a] += damping * step[3 * j + a]
@@ -178,7 +198,7 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
                 _evaluate(kernel, projector, X1, V1, A1, c0, _FLAG[1], rows, band2, scratch, all_elements,
                           counters)
             counters[3] += 1
-            lu[:] = band
+            _copy_flat(lu, band)
             lu_key[0] = np.nan
             if not lu_factor(lu, nb, kl, ku, ipiv, multipliers):
                 break
@@ -193,9 +213,9 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
             size = max(size, abs(rhs[j]))
         if not np.isfinite(size):
             break
-        base[:] = X1
-        step[:] = rhs
-        base_norm, damping = norm, 1.0
+        _copy_rows(base, X1)
+        _copy_flat(step, rhs)
+        base_norm, damping, damped = norm, 1.0, damping < 1.0
         for j in range(free_order.shape[0]):
             for a in range(3):
                 X1[free_order[j], a] += rhs[3 * j + a]
@@ -216,7 +236,7 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
     return _DIVERGED, refreshed
 
 
-@njit(cache=True)
+@njit(cache=True, _nrt=False)
 def _attempt(kernel, projector, state, history, h, position, anchor, settings, lu, ipiv, lu_key, work,
              counters):
     """One BDF2 step of size h from t = history[0] with the fairlead at ``position`` (3,) (see
@@ -247,12 +267,12 @@ def _attempt(kernel, projector, state, history, h, position, anchor, settings, l
     # full or modified Newton; "auto" (settings[5] == 2): modified unless lu_key[1] attempts are
     # still to run in full Newton, as Integrator.newton chooses
     reuse = settings[5] == 1.0 or (settings[5] == 2.0 and lu_key[1] <= 0.0)
-    X1[:] = guess
+    _copy_rows(X1, guess)
     outcome, trouble = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key,
                                rhs, base, step, scratch, settings, counters, reuse)
     if reuse and outcome == _DIVERGED:  # once more from the start: modified with a fresh tangent, or full
         trouble = True
-        X1[:] = guess
+        _copy_rows(X1, guess)
         outcome, _ = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key,
                              rhs, base, step, scratch, settings, counters, settings[5] == 1.0)
     if settings[5] == 2.0 and outcome != _LOST:
@@ -262,43 +282,53 @@ def _attempt(kernel, projector, state, history, h, position, anchor, settings, l
             lu_key[1] -= 1.0
     if outcome != _CONVERGED:
         return outcome
-    prediction[:] = guess
-    Xp[:] = X
-    Vp[:] = V
-    X[:] = X1
-    V[:] = V1
-    A[:] = A1
+    _copy_rows(prediction, guess)
+    _copy_rows(Xp, X)
+    _copy_rows(Vp, V)
+    _copy_rows(X, X1)
+    _copy_rows(V, V1)
+    _copy_rows(A, A1)
     history[0], history[1], history[2] = t + h, h, h
     counters[0] += 1
     return _CONVERGED
 
 
+#: a step of ``bdf2_steps`` may be halved this many times in its loop (the fairlead's positions at
+#: the 2**DEPTH - 1 points that split each step evenly are given); deeper, ``Integrator.step`` halves
+DEPTH = 3
+FRACTIONS = 2 ** DEPTH
+
+
 @njit(cache=True)
-def bdf2_steps(kernel, projector, state, history, times, fairlead, midpoints, anchor, settings, lu, ipiv,
+def bdf2_steps(kernel, projector, state, history, times, fairlead, fractions, anchor, settings, lu, ipiv,
                lu_key, forces, counters):
     """BDF2 steps to ``times`` (m,) in turn, the fairlead at ``fairlead`` (m, 3) and the anchor at
     ``anchor`` (3,). Returns (status, k): DONE with k = m, or FAILED / TOO_LONG / PROJECTION at
-    step k, the state being that after step k - 1 or, when the first half of a halved step k
-    went through, after that half; history[3] is then the size of the attempt that stopped.
+    step k, the state being that after the attempts of step k that went through; history[3] is
+    then the size of the attempt that stopped.
 
-    A step whose Newton fails is halved once here, as ``Integrator.step`` does: to its midpoint
-    (the fairlead at ``midpoints[k]``) and on to times[k]; if a half fails too, or the half would
-    be shorter than settings[8], or ``midpoints`` is empty, the loop stops (FAILED) for
-    ``Integrator.step`` to go on halving.
+    With ``fractions`` (m, FRACTIONS - 1, 3), the fairlead at t_(k-1) + j (t_k - t_(k-1)) /
+    FRACTIONS for j = 1 .. FRACTIONS - 1, each step is taken as ``Integrator.step`` takes it, line
+    for line: an attempt whose Newton fails is halved, no attempt is longer than settings[10]
+    times the last step, none leaves less than settings[11] of itself to go. The loop stops for
+    ``Integrator.step`` to go on when an attempt does not end on one of those points (TOO_LONG
+    before it; FAILED when a halving would go deeper) or a halved step would be shorter than
+    settings[8] (FAILED). Without (``fractions`` empty: ``BDF2.attempt``), step k is one attempt
+    of t_k - t_(k-1), and a failure stops the loop (FAILED).
 
     kernel: the fused evaluator's arrays (``Marcher.kernel``); projector: (kind, grid x, y, z,
     the walk's tables and warm start, scratch) (``Marcher.projector``); state: (X, V, A, Xp, Vp,
     prediction, rows), each (N, 3), updated in place (Xp, Vp: the step before's; rows: M A + G
     with only the anchor and fairlead rows evaluated); history: [t, h of the step before (0 at
     the start), the last step (0 if none), the stopping attempt's size], updated; settings:
-    [tolerance, increment tolerance, residual scale, max iterations, max growth of a step over
-    the last one, Newton (0 full, 1 modified, 2 auto), contraction limit, smallest line-search
-    damping, smallest step, auto's full-Newton attempts after trouble]; lu (n (2 kl + ku + 1),)
-    (see ``cablefem.banded``), ipiv (n,), lu_key (2,): the c0 modified Newton's factors belong
-    to (NaN: none) and auto's full-Newton attempts still to run, kept between calls;
-    forces (m, 2, 3): the line's forces on fairlead and anchor after each step; counters:
-    [steps, newton iterations, residual evaluations, tangents, LU factorisations, failed
-    attempts], added to.
+    [tolerance, increment tolerance, residual scale, max iterations, (unused), Newton (0 full,
+    1 modified, 2 auto), contraction limit, smallest line-search damping, smallest step, auto's
+    full-Newton attempts after trouble, largest growth of a step over the last, the stretch of
+    a step that lands on its end]; lu (n (2 kl + ku + 1),) (see ``cablefem.banded``), ipiv (n,),
+    lu_key (2,): the c0 modified Newton's factors belong to (NaN: none) and auto's full-Newton
+    attempts still to run, kept between calls; forces (m, 2, 3): the line's forces on fairlead
+    and anchor after each step; counters: [steps, newton iterations, residual evaluations,
+    tangents, LU factorisations, failed attempts], added to.
     """
     anchor_node, fairlead_node = kernel[23], kernel[24]
     X, rows = state[0], state[6]
@@ -308,30 +338,49 @@ def bdf2_steps(kernel, projector, state, history, times, fairlead, midpoints, an
             np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)),
             np.empty((N, 3)),
             (np.zeros((7, 3)), np.zeros((4, 3, 3)), np.zeros((nloc, 3)), np.zeros((nloc, 3, nloc, 3)),
-             np.zeros((12, 3, 3)), np.zeros((12, 3))))
-    max_growth, min_step = settings[4], settings[8]
+             np.zeros((12, 3, 3)), np.zeros((12, 3)), np.empty(kernel[17] + 1)))
+    stepping = fractions.shape[0] > 0
+    growth, stretch, min_step = settings[10], settings[11], settings[8]
+    parts = fractions.shape[1] + 1
     for k in range(times.shape[0]):
-        h = times[k] - history[0]
-        if history[2] > 0.0 and h > max_growth * history[2]:
-            return TOO_LONG, k
-        history[3] = h
-        outcome = _attempt(kernel, projector, state, history, h, fairlead[k], anchor, settings, lu, ipiv,
-                           lu_key, work, counters)
-        if outcome == _DIVERGED:
-            counters[5] += 1
-            if midpoints.shape[0] == 0 or 0.5 * h < min_step:
-                return FAILED, k
-            half = 0.5 * h  # Integrator.step's sizes: h / 2, then h - h / 2
-            history[3] = half
-            outcome = _attempt(kernel, projector, state, history, half, midpoints[k], anchor, settings, lu,
+        target = times[k] - history[0]
+        if not stepping:
+            history[3] = target
+            outcome = _attempt(kernel, projector, state, history, target, fairlead[k], anchor, settings, lu,
                                ipiv, lu_key, work, counters)
-            if outcome == _CONVERGED:
-                history[3] = h - half
-                outcome = _attempt(kernel, projector, state, history, h - half, fairlead[k], anchor, settings,
-                                   lu, ipiv, lu_key, work, counters)
             if outcome == _DIVERGED:
-                counters[5] += 1
                 return FAILED, k
+        else:  # Integrator.step
+            done, h, outcome, halved = 0.0, target, _CONVERGED, False
+            while target - done > 1e-9 * target:
+                remaining = target - done
+                h = min(h, remaining)
+                if history[2] > 0.0:
+                    h = min(h, growth * history[2])
+                if remaining - h <= stretch * h:
+                    h = remaining
+                history[3] = h
+                share = (done + h) / target * parts  # where the attempt ends, in 1/parts of the step
+                j = int(np.round(share))
+                if abs(share - j) > 1e-6 or j < 1:  # Integrator.step goes on from here
+                    if halved:
+                        history[3] = 2.0 * h  # the attempt that failed
+                        return FAILED, k
+                    return TOO_LONG, k
+                position = fairlead[k] if j == parts else fractions[k, j - 1]
+                outcome = _attempt(kernel, projector, state, history, h, position, anchor, settings, lu, ipiv,
+                                   lu_key, work, counters)
+                if outcome == _LOST:
+                    break
+                if outcome == _DIVERGED:
+                    counters[5] += 1
+                    if 0.5 * h < min_step:
+                        return FAILED, k
+                    h *= 0.5
+                    halved = True
+                    continue
+                done += h
+                h, halved = target, False
         if outcome == _LOST:
             return PROJECTION, k
         for a in range(3):
@@ -364,7 +413,8 @@ class Marcher:
         self.settings = np.array([integ.tolerance, integ.increment_tolerance, integ.scale,
                                   integ.max_iterations, np.inf,
                                   2.0 if integ.switching else float(integ.reuse_jacobian),
-                                  integ.CONTRACTION, integ.MIN_DAMPING, integ.min_dt, integ.AUTO_FULL_STEPS])
+                                  integ.CONTRACTION, integ.MIN_DAMPING, integ.min_dt, integ.AUTO_FULL_STEPS,
+                                  integ.MAX_GROWTH, integ.STRETCH])
         self.lu = np.zeros(ev.n * (2 * ev.kl + ev.ku + 1))  # LAPACK's column-major band, flat
         self.ipiv = np.zeros(ev.n, dtype=np.int64)
         self.lu_key = np.full(2, np.nan)
@@ -399,26 +449,26 @@ class Marcher:
         return ((self.kind,) + grid + walker
                 + (np.zeros(n, dtype=np.int64), np.zeros((3, n)), np.zeros((3, n)), np.zeros((walk.OUTPUTS, n))))
 
-    def run(self, integ, times, fairlead, max_growth, midpoints=None):
-        """Steps of ``integ`` to ``times`` (m,) with the fairlead at ``fairlead`` (m, 3); no step
-        longer than ``max_growth`` times the last. With ``midpoints`` (m, 3), the fairlead at
-        each step's midpoint (``BDF2.march``), a failed step is halved in the loop and the steps
-        and failed attempts are counted into ``integ`` here; without (``BDF2.attempt``),
-        ``Integrator.step`` halves and counts. Returns (status, k, forces (m, 2, 3), the size of
-        the attempt that stopped the loop)."""
+    def run(self, integ, times, fairlead, fractions=None):
+        """Steps of ``integ`` to ``times`` (m,) with the fairlead at ``fairlead`` (m, 3). With
+        ``fractions`` (m, FRACTIONS - 1, 3), the fairlead at the points that split each step
+        evenly (``BDF2.march``), each step is taken as ``Integrator.step`` takes it (halved on
+        failure, grown back) and the steps and failed attempts are counted into ``integ`` here;
+        without (``BDF2.attempt``), each step is one attempt and ``Integrator.step`` halves and
+        counts. Returns (status, k, forces (m, 2, 3), the size of the attempt that stopped the
+        loop)."""
         h_before, Xp, Vp = (0.0, integ.X, integ.V) if integ.previous is None else integ.previous
         state = tuple(np.array(x, dtype=float) for x in (integ.X, integ.V, integ.A, Xp, Vp, integ.X,
                                                          np.zeros_like(integ.X)))
         history = np.array([integ.t, h_before, integ.last_h or 0.0, 0.0])
-        settings = self.settings.copy()
-        settings[4] = max_growth
         forces = np.empty((len(times), 2, 3))
         counters = np.zeros(6, dtype=np.int64)
         projector = self.projector(integ.X)
-        halves = np.zeros((0, 3)) if midpoints is None else np.ascontiguousarray(midpoints, dtype=float)
+        splits = (np.zeros((0, FRACTIONS - 1, 3)) if fractions is None
+                  else np.ascontiguousarray(fractions, dtype=float))
         self.lu_key[1] = integ.full_steps_left  # "auto" Newton's state, shared with the Python path
         status, k = bdf2_steps(self.kernel, projector, state, history, np.asarray(times, dtype=float),
-                               np.ascontiguousarray(fairlead, dtype=float), halves, self.anchor, settings,
+                               np.ascontiguousarray(fairlead, dtype=float), splits, self.anchor, self.settings,
                                self.lu, self.ipiv, self.lu_key, forces, counters)
         integ.full_steps_left = int(self.lu_key[1])
         if self.kind == TRIANGULATED and counters[2]:  # the walk's last call: the next one starts there
@@ -428,7 +478,7 @@ class Marcher:
         integ.nfev += int(counters[2])
         integ.njev += int(counters[3])
         integ.nlu += int(counters[4])
-        if midpoints is not None:
+        if fractions is not None:
             integ.steps += int(counters[0])
             integ.rejected += int(counters[5])
         if counters[0] > 0:

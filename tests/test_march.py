@@ -95,24 +95,43 @@ def test_compiled_steps_project_curved_seabeds_as_the_python_steps(seabed):
     assert np.all(integ.system.seabed.project(X2[1:]).gap > -0.5)  # resting on it (the anchor is buried)
 
 
-def test_compiled_steps_resume_after_a_failure_with_growth_capped():
-    """A step whose Newton fails is halved in the compiled loop; when a half fails too,
-    ``Integrator.step`` halves on, and the steps after grow back by at most 2x."""
+@pytest.mark.parametrize("iterations, smallest, python_steps", [
+    (3, 0.04 / 4, False),  # failed steps halved twice, all inside the compiled loop
+    (2, 0.04 / 32, True),  # halved five times: deeper than the loop's DEPTH, step() goes on
+])
+def test_compiled_steps_halve_and_grow_back_as_step_does(iterations, smallest, python_steps):
+    """A step whose Newton fails is halved in the compiled loop, up to DEPTH times, and the steps
+    after it grow back by at most 2x, as ``Integrator.step`` does (the same attempts: the same
+    statistics and states as the Python path); a deeper halving goes on in ``Integrator.step``."""
     scene = flume_scene("flat", "dynamic", 20, 1, 8.0, 0.04)
-    integ = integrator(scene, 0.04, True, max_iterations=3)
-    sizes, failures = [], []
-    original = integ.attempt
+    times = StepControl(scene.solver, 0.04).times(0.0, 8.0)
+    runs = []
+    for compiled_steps in (True, False):
+        integ = integrator(scene, 0.04, compiled_steps, max_iterations=iterations)
+        sizes, calls = [], []
+        attempt, step = integ.attempt, integ.step
 
-    def recording(h):
-        ok = original(h)
-        (sizes if ok else failures).append(h)
-        return ok
+        def recording(h, attempt=attempt, sizes=sizes):
+            ok = attempt(h)
+            sizes.append((h, ok))
+            return ok
 
-    integ.attempt = recording
-    integ.march(StepControl(scene.solver, 0.04).times(0.0, 8.0))
-    assert integ.rejected > len(failures)  # some failed steps were halved inside the loop ...
-    assert sizes and min(sizes) < 0.02  # ... and halves that failed too went through step()
-    assert integ.t == pytest.approx(8.0, abs=1e-12)  # ... and the run still lands on the end
+        def counting(*args, step=step, calls=calls, **kwargs):
+            calls.append(args)
+            return step(*args, **kwargs)
+
+        integ.attempt, integ.step = recording, counting
+        forces = integ.march(times)
+        runs.append((forces, integ.X, integ.statistics(), sizes, calls))
+        assert integ.t == pytest.approx(8.0, abs=1e-12)
+    (f1, X1, s1, _, calls), (f2, X2, s2, sizes, _) = runs
+    assert s1 == s2 and s1["rejected"] > 0
+    assert np.max(np.abs(f1 - f2)) <= 1e-9 * np.max(np.abs(f2))
+    assert np.max(np.abs(X1 - X2)) <= 1e-9
+    taken = np.array([h for h, ok in sizes if ok])
+    assert taken.min() == pytest.approx(smallest)  # the deepest halving of the run
+    assert np.all(taken[1:] <= 2.0 * (1 + BDF2.STRETCH) * taken[:-1])  # grown back by doubling
+    assert bool(calls) == python_steps
 
 
 def test_banded_lu_with_pivoting_solves_like_scipy():
