@@ -57,10 +57,11 @@ def _dot(a, b):
 
 
 @njit(cache=True, _nrt=False)
-def _saturation(w, vc, scale, phi, dphi):
-    """phi(w) and dphi/dw of the saturated-damping law (cablefem.loads.friction.saturation)."""
+def _saturation(w, vc, scale, phi, dphi, stick):
+    """phi(w) and dphi/dw of the saturated-damping law (cablefem.loads.friction.saturation);
+    with ``stick``, of its ramp (the sticking branch) at any speed."""
     speed = np.sqrt(_dot(w, w))
-    ramp = speed < vc
+    ramp = speed < vc or stick
     gain = scale / vc if ramp else 1.0 / speed
     for a in range(3):
         phi[a] = gain * w[a]
@@ -69,11 +70,15 @@ def _saturation(w, vc, scale, phi, dphi):
 
 
 @njit(cache=True, _nrt=False)
-def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, v_x, a_x, jac, f, Ab, Bb, M, u):
+def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, curved, v_x, a_x, jac, f, Ab, Bb, M, u, stick,
+                 slip):
     """Force f (3,) per unit length at one full quadrature point and the blocks A = -(f_r +
     v_x f_v + a_x f_a), B = -(f_dr) of the weak form (loads: weight, contact with friction,
     drag, added mass; p holds the element's parameters, bed the friction law; M (16, 3, 3)
-    and u (16, 3) are scratch)."""
+    and u (16, 3) are scratch; ``curved``: the normal n varies, with gradient dn, which a plane's
+    does not: its terms are skipped). ``stick``: friction on its sticking branch whatever the
+    speed (the model Newton's stick correction solves, ``cablefem.dynamics``); slip (3,)
+    receives the slip velocity w (zero off the seabed or without friction)."""
     dry, buoy, k, c, drag_n, drag_t, cur0, cur1, cur2, am_n, am_t = p
     model, mu, mu_a, mu_t, fscale, vc = bed
     f[0] = 0.0
@@ -110,58 +115,82 @@ def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, v_x, a_x, jac, f, 
             dp_dv[j] = 0.0
         if closing:
             for j in range(3):
-                dp_dr[j] -= c * (v[0] * dn[0, j] + v[1] * dn[1, j] + v[2] * dn[2, j])
+                if curved:
+                    dp_dr[j] -= c * (v[0] * dn[0, j] + v[1] * dn[1, j] + v[2] * dn[2, j])
                 dp_dv[j] = -c * n[j]
             _add_outer(Ab, n, dp_dv, -v_x)
         _add_outer(Ab, n, dp_dr, -1.0)
-        for i in range(3):
-            for j in range(3):
-                Ab[i, j] -= pressure * dn[i, j]
-    if model > 0 and touching:
+        if curved:
+            for i in range(3):
+                for j in range(3):
+                    Ab[i, j] -= pressure * dn[i, j]
+    slip[0], slip[1], slip[2] = 0.0, 0.0, 0.0
+    if model == 1 and touching:  # isotropic: dphi = gain I - ramp_off w w^T / |w|^3, w on the bed
         for i in range(3):
             w[i] = v[i] - vn * n[i]
-        size = np.inf
-        if model == 1:
-            _saturation(w, vc, fscale, phi, dphi)
+            slip[i] = w[i]
+        speed = np.sqrt(_dot(w, w))
+        ramp = speed < vc or stick
+        gain = fscale / vc if ramp else 1.0 / speed
+        bend = 0.0 if ramp else 1.0 / (speed * speed * speed)
+        for i in range(3):
+            dN[i] = -mu * gain * w[i]
+            f[i] += pressure * dN[i]
+        if jac:
+            # F = p dN(w), w = (I - n n^T) v: Ab -= v_x dF_dw In + dN (dp_dr + v_x dp_dv)^T, and
+            # dF_dw In = -mu p (gain In - bend w w^T) since w is normal to n
+            scale = v_x * mu * pressure
             for i in range(3):
-                dN[i] = -mu * phi[i]
                 for j in range(3):
-                    dF_dw[i, j] = -mu * pressure * dphi[i, j]
-        else:
-            tn = _dot(t, n)
-            for i in range(3):
-                pv[i] = t[i] - tn * n[i]
-            size = np.sqrt(_dot(pv, pv))
-            if size < DEGENERATE_AXIS:
-                size = np.inf
-                q[:] = 0.0
-            else:
+                    Ab[i, j] += scale * ((gain if i == j else 0.0) - gain * n[i] * n[j] - bend * w[i] * w[j]) \
+                        - dN[i] * (dp_dr[j] + v_x * dp_dv[j])
+            if curved:  # dw/dr through the normal's gradient
                 for i in range(3):
-                    q[i] = pv[i] / size
-            along = _dot(w, q)
+                    for j in range(3):
+                        dphi[i, j] = -mu * pressure * ((gain if i == j else 0.0) - bend * w[i] * w[j])
+                        tmp[i, j] = -(n[i] * v[j] + (vn if i == j else 0.0))
+                dw_dr[:, :] = 0.0
+                _add_matmul(dw_dr, tmp, dn, 1.0)
+                _add_matmul(Ab, dphi, dw_dr, -1.0)
+    elif model == 2 and touching:
+        for i in range(3):
+            w[i] = v[i] - vn * n[i]
+            slip[i] = w[i]
+        # anisotropic: along the line's direction on the bed and across it
+        tn = _dot(t, n)
+        for i in range(3):
+            pv[i] = t[i] - tn * n[i]
+        size = np.sqrt(_dot(pv, pv))
+        if size < DEGENERATE_AXIS:
+            size = np.inf
+            q[:] = 0.0
+        else:
             for i in range(3):
-                va[i] = along * q[i]
-                un[i] = w[i] - va[i]  # the transverse velocity
-            _saturation(va, vc, fscale, phia, dphia)
-            _saturation(un, vc, fscale, phi, dphi)
-            for i in range(3):
-                dN[i] = -(mu_a * phia[i] + mu_t * phi[i])
-            # dF/dw = -N (ga q q^T + gt (I - q q^T)); dF/dq = -N (ga - gt)(q w^T + (w.q) I)
-            for i in range(3):
-                for j in range(3):
-                    tmp[i, j] = q[i] * q[j]
-            dF_dw[:, :] = 0.0
-            _add_matmul(dF_dw, dphia, tmp, -pressure * mu_a)
-            for i in range(3):
-                for j in range(3):
-                    tmp[i, j] = eye[i, j] - q[i] * q[j]
-            _add_matmul(dF_dw, dphi, tmp, -pressure * mu_t)
-            for i in range(3):
-                for j in range(3):
-                    tmp[i, j] = q[i] * w[j] + (along if i == j else 0.0)
-            dF_dq[:, :] = 0.0
-            _add_matmul(dF_dq, dphia, tmp, -pressure * mu_a)
-            _add_matmul(dF_dq, dphi, tmp, pressure * mu_t)
+                q[i] = pv[i] / size
+        along = _dot(w, q)
+        for i in range(3):
+            va[i] = along * q[i]
+            un[i] = w[i] - va[i]  # the transverse velocity
+        _saturation(va, vc, fscale, phia, dphia, stick)
+        _saturation(un, vc, fscale, phi, dphi, stick)
+        for i in range(3):
+            dN[i] = -(mu_a * phia[i] + mu_t * phi[i])
+        # dF/dw = -N (ga q q^T + gt (I - q q^T)); dF/dq = -N (ga - gt)(q w^T + (w.q) I)
+        for i in range(3):
+            for j in range(3):
+                tmp[i, j] = q[i] * q[j]
+        dF_dw[:, :] = 0.0
+        _add_matmul(dF_dw, dphia, tmp, -pressure * mu_a)
+        for i in range(3):
+            for j in range(3):
+                tmp[i, j] = eye[i, j] - q[i] * q[j]
+        _add_matmul(dF_dw, dphi, tmp, -pressure * mu_t)
+        for i in range(3):
+            for j in range(3):
+                tmp[i, j] = q[i] * w[j] + (along if i == j else 0.0)
+        dF_dq[:, :] = 0.0
+        _add_matmul(dF_dq, dphia, tmp, -pressure * mu_a)
+        _add_matmul(dF_dq, dphi, tmp, pressure * mu_t)
         for i in range(3):
             f[i] += pressure * dN[i]
         if jac:
@@ -175,7 +204,7 @@ def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, v_x, a_x, jac, f, 
             _add_outer(Ab, dN, dp_dr, -1.0)
             _add_matmul(Ab, dF_dw, In, -v_x)
             _add_outer(Ab, dN, dp_dv, -v_x)
-            if model == 2 and size < np.inf:
+            if size < np.inf:
                 for i in range(3):
                     for j in range(3):
                         dq_dp[i, j] = (eye[i, j] - q[i] * q[j]) / size
@@ -202,24 +231,18 @@ def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, v_x, a_x, jac, f, 
             per[i] = drag_n * speed * un[i] + drag_t * abs(along) * along * t[i]
             f[i] += stretch * per[i]
         if jac:
+            # with dg = Dn (|un| I + un un^T / |un|), and P un = un, t^T un = 0:
+            # A -= v_x f_v: Ab += v_x |r'| (dg P + 2 Dt |u.t| t t^T), dg P = Dn (|un| P + un un^T / |un|)
+            # B -= f_dr: Bb -= per t^T + dF_dw P, dF_dw P = -Dn (|un| t un^T + (u.t)(|un| P + un un^T / |un|))
+            #                                               + Dt |u.t| (2 t un^T + (u.t) P)
+            inverse = 1.0 / speed if speed > 0.0 else 0.0
+            axial = drag_t * abs(along)
             for i in range(3):
                 for j in range(3):
-                    dg[i, j] = drag_n * ((speed if i == j else 0.0)
-                                         + (un[i] * un[j] / speed if speed > 0.0 else 0.0))
-            # f_v = -|r'| (dnormal P + 2 Dt |u.t| t t^T); A -= v_x f_v
-            _add_matmul(Ab, dg, P, v_x * stretch)
-            _add_outer(Ab, t, t, v_x * stretch * 2.0 * drag_t * abs(along))
-            # f_dr = per t^T + dh_dt P, dh_dt = -dg (t u^T + (u.t) I) + Dt |u.t| (2 t u^T + (u.t) I)
-            for i in range(3):
-                for j in range(3):
-                    tmp[i, j] = t[i] * w[j] + (along if i == j else 0.0)
-            dF_dw[:, :] = 0.0
-            _add_matmul(dF_dw, dg, tmp, -1.0)
-            for i in range(3):
-                for j in range(3):
-                    dF_dw[i, j] += drag_t * abs(along) * (2.0 * t[i] * w[j] + (along if i == j else 0.0))
-            _add_outer(Bb, per, t, -1.0)
-            _add_matmul(Bb, dF_dw, P, -1.0)
+                    dgP = drag_n * (speed * P[i, j] + un[i] * un[j] * inverse)
+                    Ab[i, j] += v_x * stretch * (dgP + 2.0 * axial * t[i] * t[j])
+                    Bb[i, j] += drag_n * speed * t[i] * un[j] + along * dgP \
+                        - axial * (2.0 * t[i] * un[j] + along * P[i, j]) - per[i] * t[j]
     # added mass, normal and tangential
     if am_n > 0.0 or am_t > 0.0:
         along = _dot(acc, t)
@@ -228,18 +251,18 @@ def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, v_x, a_x, jac, f, 
             per[i] = am_n * acc[i] + diff * along * t[i]
             f[i] -= stretch * per[i]
         if jac:
+            # Bb += per t^T + diff ((a.t) I + t a^T) P = per t^T + diff ((a.t) P + t a_perp^T)
             for i in range(3):
                 for j in range(3):
-                    Ab[i, j] += a_x * stretch * (am_n * eye[i, j] + diff * t[i] * t[j])
-                    tmp[i, j] = diff * ((along if i == j else 0.0) + t[i] * acc[j])
-            _add_outer(Bb, per, t, 1.0)
-            _add_matmul(Bb, tmp, P, 1.0)
+                    Ab[i, j] += a_x * stretch * ((am_n if i == j else 0.0) + diff * t[i] * t[j])
+                    Bb[i, j] += per[i] * t[j] + diff * (along * P[i, j] + t[i] * (acc[j] - along * t[j]))
 
 
 @njit(cache=True, _nrt=False)
 def _tension(dr, dv, EA, beta, pushes, v_x, jac, N, Dblk):
     """Flux N = T t at one reduced point and D = N_dr + v_x N_dv (cablefem.loads.tension);
-    ``pushes``: the line may push (T = EA e for all e, the statics start-up aid)."""
+    ``pushes``: the line may push (T = EA e for all e: the statics start-up aid, and the model
+    Newton's taut correction, ``cablefem.dynamics``). Returns whether the point is taut."""
     stretch = np.sqrt(_dot(dr, dr))
     t0, t1, t2 = dr[0] / stretch, dr[1] / stretch, dr[2] / stretch
     e = stretch - 1.0
@@ -258,25 +281,31 @@ def _tension(dr, dv, EA, beta, pushes, v_x, jac, N, Dblk):
                 delta = 1.0 if i == j else 0.0
                 Dblk[i, j] = t[i] * dT + (T / stretch) * (delta - t[i] * t[j]) \
                     + SLACK_STIFFNESS * EA * (1.0 - on) * delta + v_x * EA * beta * on * t[i] * t[j]
+    return e > 0.0 and T > 0.0
 
 
 @njit(cache=True)
 def _assemble(X, V, Acc, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass,
-              bed, plane, gap, normal, grad_gap, dnormal, v_x, a_x, jac, rows, band, kl, ku):
+              bed, plane, gap, normal, grad_gap, dnormal, v_x, a_x, jac, rows, band, kl, ku, stick, pull, use_stick,
+              slip, taut):
     """Residual rows (N, 3) incl. inertia, and the banded tangent of the free unknowns. On a plane
     seabed ``plane`` is (nx, ny, nz, offset) and the gap is computed here (gap, normal, grad_gap
-    and dnormal are then not read); otherwise ``plane`` is empty and they hold the projection."""
+    and dnormal are then not read); otherwise ``plane`` is empty and they hold the projection.
+    With ``use_stick``, friction sticks at the full points where ``stick`` (nel, nq) is set and
+    the line pulls (and pushes) at the reduced points where ``pull`` (nel, nr) is set; slip
+    (nel, nq, 3) receives the slip velocities and taut (nel, nr) whether the points are taut."""
     nloc = dofs.shape[1]
     _assemble_loop(X, V, Acc, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass,
                    bed, plane, gap, normal, grad_gap, dnormal, v_x, a_x, jac, rows, band, kl, ku, position.max(),
                    np.zeros((7, 3)), np.zeros((4, 3, 3)), np.zeros((nloc, 3)), np.zeros((nloc, 3, nloc, 3)),
-                   np.zeros((12, 3, 3)), np.zeros((12, 3)), np.arange(dofs.shape[0]))
+                   np.zeros((12, 3, 3)), np.zeros((12, 3)), np.arange(dofs.shape[0]), stick, pull, use_stick, slip,
+                   taut)
 
 
 @njit(cache=True, _nrt=False)
 def _assemble_loop(X, V, Acc, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass, bed,
                    plane, gap, normal, grad_gap, dnormal, v_x, a_x, jac, rows, band, kl, ku, last, vec, blk,
-                   Re, Ke, M, u, elements):
+                   Re, Ke, M, u, elements, stick, pull, use_stick, slip, taut):
     """The loop of ``_assemble`` over ``elements`` on zeroed scratch it is given (vec (7, 3), blk
     (4, 3, 3), Re, Ke, M, u): it allocates nothing, so it runs without reference counting (see the
     module docstring)."""
@@ -303,11 +332,11 @@ def _assemble_loop(X, V, Acc, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, p
                     v[a] += phi[l, e, g] * V[i, a]
                     acc[a] += phi[l, e, g] * Acc[i, a]
             if on_plane:
-                _point_loads(r, dr, v, acc, params[e], bed, _dot(flat, r) - plane[3], flat, flat, zero,
-                             v_x, a_x, jac, f, Ab, Bb, M, u)
+                _point_loads(r, dr, v, acc, params[e], bed, _dot(flat, r) - plane[3], flat, flat, zero, False,
+                             v_x, a_x, jac, f, Ab, Bb, M, u, use_stick and stick[e, g], slip[e, g])
             else:
                 _point_loads(r, dr, v, acc, params[e], bed, gap[e, g], normal[e, g], grad_gap[e, g],
-                             dnormal[e, g], v_x, a_x, jac, f, Ab, Bb, M, u)
+                             dnormal[e, g], True, v_x, a_x, jac, f, Ab, Bb, M, u, use_stick and stick[e, g], slip[e, g])
             w = dx[e, g]
             m = mass[e]
             for l in range(nloc):
@@ -329,7 +358,8 @@ def _assemble_loop(X, V, Acc, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, p
                 for a in range(3):
                     dr[a] += rdphi[l, e, g] * X[i, a]
                     dv[a] += rdphi[l, e, g] * V[i, a]
-            _tension(dr, dv, tension[e, 0], tension[e, 1], tension[e, 2] > 0.0, v_x, jac, N, Db)
+            taut[e, g] = _tension(dr, dv, tension[e, 0], tension[e, 1],
+                                  tension[e, 2] > 0.0 or (use_stick and pull[e, g]), v_x, jac, N, Db)
             w = rdx[e, g]
             for l in range(nloc):
                 for a in range(3):
@@ -410,6 +440,12 @@ class FusedEvaluator:
         if isinstance(system.seabed, Plane):
             self.plane = np.append(system.seabed.normal, system.seabed.offset).astype(float)
         self.unused = (np.zeros((1, 1)), np.zeros((1, 1, 3)), np.zeros((1, 1, 3)), np.zeros((1, 1, 3, 3)))
+        nq = fem.full.dx.shape[1]
+        self.stick = np.zeros((nel, nq), dtype=bool)  # full points held on friction's sticking branch
+        self.slip = np.zeros((nel, nq, 3))  # slip velocities of the last evaluation
+        nr = fem.reduced.dx.shape[1]
+        self.pull = np.zeros((nel, nr), dtype=bool)  # reduced points held on the taut branch
+        self.taut = np.zeros((nel, nr), dtype=bool)  # taut reduced points of the last evaluation
 
     @classmethod
     def for_system(cls, system, mass):
@@ -425,8 +461,10 @@ class FusedEvaluator:
             return None
         return cls(system, mass)
 
-    def evaluate(self, X, V, A, v_x, a_x, jacobian=True):
-        """Rows M A + G (N, 3) and, with ``jacobian``, the banded K + a_x M (LAPACK layout)."""
+    def evaluate(self, X, V, A, v_x, a_x, jacobian=True, stick=False):
+        """Rows M A + G (N, 3) and, with ``jacobian``, the banded K + a_x M (LAPACK layout); with
+        ``stick``, friction on its sticking branch at the points ``self.stick`` holds. The slip
+        velocities go to ``self.slip``."""
         fem = self.system.fem
         self.tension[:, 2] = float(self.system.tension.compression)
         if self.plane.size:
@@ -446,7 +484,7 @@ class FusedEvaluator:
                   self.reduced.phi, self.reduced.dphi, self.reduced.dx, self.params, self.tension,
                   self.mass, self.bed, self.plane, np.ascontiguousarray(gap), np.ascontiguousarray(normal),
                   np.ascontiguousarray(grad), np.ascontiguousarray(dn), v_x, a_x, jacobian, rows,
-                  band, self.kl, self.ku)
+                  band, self.kl, self.ku, self.stick, self.pull, stick, self.slip, self.taut)
         return rows, (band if jacobian else None)
 
     def factorize(self, band, scale=1.0):

@@ -122,10 +122,12 @@ def _point(X1, x_hist, v_hist, c0, V1, A1):
 
 
 @njit(cache=True, _nrt=False)
-def _evaluate(kernel, projector, X1, V1, A1, c0, tangent, rows, band2, scratch, elements, counters):
+def _evaluate(kernel, projector, X1, V1, A1, c0, tangent, rows, band2, scratch, elements, counters,
+              held=False):
     """The step residual M A + G at X1, V1, A1 into ``rows`` over ``elements`` and, with
     ``tangent``, its banded tangent into ``band2`` (both zeroed first), the seabed projected first
-    unless it is a plane (with its derivatives when a tangent is assembled). Returns the
+    unless it is a plane (with its derivatives when a tangent is assembled); ``held``: the points
+    scratch's stick and pull flags hold on their branches (see ``_newton``). Returns the
     projection's status (0, or the points the walk did not place)."""
     (dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass, bed, plane, gap,
      normal, grad_gap, dnormal, kl, ku) = kernel[:19]
@@ -134,14 +136,59 @@ def _evaluate(kernel, projector, X1, V1, A1, c0, tangent, rows, band2, scratch, 
         if lost != 0:
             return lost
     vec, blk, Re, Ke, M, u = scratch[:6]
+    stick, pull, slip, taut = scratch[7:11]
     rows[:] = 0.0
     if tangent:
         band2.T[:] = 0.0  # the contiguous (nb, ld) view: a memset, not a strided walk
     _assemble_loop(X1, V1, A1, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass, bed,
                    plane, gap, normal, grad_gap, dnormal, c0, c0 * c0, tangent, rows, band2, kl, ku,
-                   position.shape[0] - 1, vec, blk, Re, Ke, M, u, elements)  # position: a permutation
+                   position.shape[0] - 1, vec, blk, Re, Ke, M, u, elements, stick, pull, held, slip,
+                   taut)  # position: a permutation
     counters[2] += 1
     return 0
+
+
+@njit(cache=True, _nrt=False)
+def _keep_branches(scratch):
+    """The base point's slip velocities and taut points, for ``_branches``."""
+    slip, taut, base_slip, base_taut = scratch[9], scratch[10], scratch[11], scratch[12]
+    for e in range(slip.shape[0]):
+        for g in range(slip.shape[1]):
+            for a in range(3):
+                base_slip[e, g, a] = slip[e, g, a]
+        for g in range(taut.shape[1]):
+            base_taut[e, g] = taut[e, g]
+
+
+@njit(cache=True, _nrt=False)
+def _branches(scratch, vc, again):
+    """Hold (stick and pull flags in scratch) the full points that slid at the base (|w| >= vc)
+    and that a rejected Newton step took, still on the seabed, into the ramp or against their slip
+    direction, and the reduced points slack at the base that it pulled taut (with ``again``, also
+    those held already), as ``Integrator._overshot``. Returns whether any is held and the flags
+    changed."""
+    stick, pull, slip, taut, base_slip, base_taut = scratch[7:13]
+    held, changed = False, False
+    for e in range(slip.shape[0]):
+        for g in range(slip.shape[1]):
+            before = np.sqrt(_dot3(base_slip[e, g], base_slip[e, g]))
+            after = np.sqrt(_dot3(slip[e, g], slip[e, g]))
+            flag = before >= vc and after > 0.0 and (after < vc or _dot3(base_slip[e, g], slip[e, g]) <= 0.0)
+            flag = flag or (again and stick[e, g])
+            changed = changed or flag != stick[e, g]
+            stick[e, g] = flag
+            held = held or flag
+        for g in range(taut.shape[1]):
+            flag = (taut[e, g] and not base_taut[e, g]) or (again and pull[e, g])
+            changed = changed or flag != pull[e, g]
+            pull[e, g] = flag
+            held = held or flag
+    return held and (changed or not again)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def _dot3(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
 @njit(cache=True, _nrt=False)
@@ -168,6 +215,7 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
     previous, refreshed = -1.0, False  # none yet
     base_norm, damping, min_damping = -1.0, 1.0, settings[7]  # base_norm < 0: no step taken yet
     damped = False  # the step taken started from a point a damped step reached
+    corrections = 0  # of the step from the base
     for _ in range(int(settings[3])):
         _point(X1, x_hist, v_hist, c0, V1, A1)
         # the tangent with the residual unless the last residual promises convergence (Newton) or
@@ -185,6 +233,37 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
         if norm <= tolerance and previous >= 0.0:
             return _CONVERGED, refreshed
         if base_norm >= 0.0 and damping > min_damping and not norm <= (1 - 1e-4 * damping) * base_norm:
+            if damping == 1.0 and corrections < settings[12] and fresh and _branches(
+                    scratch, kernel[11][5], corrections > 0):  # Newton again from the base on the new branches
+                corrections += 1
+                counters[6] += 1
+                _copy_rows(X1, base)
+                _point(X1, x_hist, v_hist, c0, V1, A1)
+                _evaluate(kernel, projector, X1, V1, A1, c0, _FLAG[1], rows, band2, scratch, all_elements,
+                          counters, _FLAG[1])
+                counters[3] += 1
+                _copy_flat(lu, band)
+                lu_key[0] = np.nan
+                if not lu_factor(lu, nb, kl, ku, ipiv, multipliers):
+                    break
+                counters[4] += 1
+                lu_key[0] = c0
+                for j in range(free_order.shape[0]):
+                    for a in range(3):
+                        rhs[3 * j + a] = -rows[free_order[j], a]
+                lu_solve(lu, nb, kl, ku, ipiv, rhs)
+                size = 0.0
+                for j in range(nb):
+                    size = max(size, abs(rhs[j]))
+                if not np.isfinite(size):
+                    break
+                _copy_flat(step, rhs)
+                for j in range(free_order.shape[0]):
+                    for a in range(3):
+                        X1[free_order[j], a] += rhs[3 * j + a]
+                counters[1] += 1
+                previous = size
+                continue
             damping *= 0.5
             _copy_rows(X1, base)
             for j in range(free_order.shape[0]):
@@ -216,6 +295,8 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
         _copy_rows(base, X1)
         _copy_flat(step, rhs)
         base_norm, damping, damped = norm, 1.0, damping < 1.0
+        _keep_branches(scratch)
+        corrections = 0
         for j in range(free_order.shape[0]):
             for a in range(3):
                 X1[free_order[j], a] += rhs[3 * j + a]
@@ -324,21 +405,24 @@ def bdf2_steps(kernel, projector, state, history, times, fairlead, fractions, an
     [tolerance, increment tolerance, residual scale, max iterations, (unused), Newton (0 full,
     1 modified, 2 auto), contraction limit, smallest line-search damping, smallest step, auto's
     full-Newton attempts after trouble, largest growth of a step over the last, the stretch of
-    a step that lands on its end]; lu (n (2 kl + ku + 1),) (see ``cablefem.banded``), ipiv (n,),
+    a step that lands on its end, corrections of a Newton step on new branches]; lu (n (2 kl + ku + 1),) (see ``cablefem.banded``), ipiv (n,),
     lu_key (2,): the c0 modified Newton's factors belong to (NaN: none) and auto's full-Newton
     attempts still to run, kept between calls; forces (m, 2, 3): the line's forces on fairlead
     and anchor after each step; counters: [steps, newton iterations, residual evaluations,
-    tangents, LU factorisations, failed attempts], added to.
+    tangents, LU factorisations, failed attempts, corrections], added to.
     """
     anchor_node, fairlead_node = kernel[23], kernel[24]
     X, rows = state[0], state[6]
     N = X.shape[0]
-    nloc = kernel[0].shape[1]
+    nloc, nel, nq = kernel[2].shape
+    nr = kernel[5].shape[2]
     work = (np.empty(ipiv.shape[0]), np.empty(ipiv.shape[0]), np.zeros(lu.shape[0]), np.empty((N, 3)),
             np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)),
             np.empty((N, 3)),
             (np.zeros((7, 3)), np.zeros((4, 3, 3)), np.zeros((nloc, 3)), np.zeros((nloc, 3, nloc, 3)),
-             np.zeros((12, 3, 3)), np.zeros((12, 3)), np.empty(kernel[17] + 1)))
+             np.zeros((12, 3, 3)), np.zeros((12, 3)), np.empty(kernel[17] + 1),
+             np.zeros((nel, nq), dtype=np.bool_), np.zeros((nel, nr), dtype=np.bool_), np.zeros((nel, nq, 3)),
+             np.zeros((nel, nr), dtype=np.bool_), np.zeros((nel, nq, 3)), np.zeros((nel, nr), dtype=np.bool_)))
     stepping = fractions.shape[0] > 0
     growth, stretch, min_step = settings[10], settings[11], settings[8]
     parts = fractions.shape[1] + 1
@@ -414,7 +498,7 @@ class Marcher:
                                   integ.max_iterations, np.inf,
                                   2.0 if integ.switching else float(integ.reuse_jacobian),
                                   integ.CONTRACTION, integ.MIN_DAMPING, integ.min_dt, integ.AUTO_FULL_STEPS,
-                                  integ.MAX_GROWTH, integ.STRETCH])
+                                  integ.MAX_GROWTH, integ.STRETCH, integ.MAX_CORRECTIONS])
         self.lu = np.zeros(ev.n * (2 * ev.kl + ev.ku + 1))  # LAPACK's column-major band, flat
         self.ipiv = np.zeros(ev.n, dtype=np.int64)
         self.lu_key = np.full(2, np.nan)
@@ -462,7 +546,7 @@ class Marcher:
                                                          np.zeros_like(integ.X)))
         history = np.array([integ.t, h_before, integ.last_h or 0.0, 0.0])
         forces = np.empty((len(times), 2, 3))
-        counters = np.zeros(6, dtype=np.int64)
+        counters = np.zeros(7, dtype=np.int64)
         projector = self.projector(integ.X)
         splits = (np.zeros((0, FRACTIONS - 1, 3)) if fractions is None
                   else np.ascontiguousarray(fractions, dtype=float))
@@ -481,6 +565,7 @@ class Marcher:
         if fractions is not None:
             integ.steps += int(counters[0])
             integ.rejected += int(counters[5])
+        integ.corrections += int(counters[6])
         if counters[0] > 0:
             X, V, A, Xp, Vp, prediction, rows = state
             integ.X, integ.V, integ.A, integ.prediction, integ.residual_rows = X, V, A, prediction, rows
