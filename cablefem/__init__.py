@@ -4,8 +4,11 @@ The line is a field r(s) in R^3 over unstretched arc length s (desire2023
 Eq. 1), discretised with scikit-fem; seabeds live in ``cablefem.geometry``.
 """
 
+from ._jit_cache import refresh as _refresh_jit_cache
 from .errors import ConvergenceError, InputError
 from .line import Line, LineType, Segment
+
+_refresh_jit_cache()  # before any compiled kernel is loaded from numba's cache
 
 __all__ = ["ConvergenceError", "InputError", "Line", "LineType", "Segment"]
 __version__ = "0.1.0"
