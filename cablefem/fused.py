@@ -335,8 +335,13 @@ def _assemble_loop(X, V, Acc, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, p
                 _point_loads(r, dr, v, acc, params[e], bed, _dot(flat, r) - plane[3], flat, flat, zero, False,
                              v_x, a_x, jac, f, Ab, Bb, M, u, use_stick and stick[e, g], slip[e, g])
             else:
-                _point_loads(r, dr, v, acc, params[e], bed, gap[e, g], normal[e, g], grad_gap[e, g],
-                             dnormal[e, g], True, v_x, a_x, jac, f, Ab, Bb, M, u, use_stick and stick[e, g], slip[e, g])
+                dn = dnormal[e, g]
+                curved = False  # a point on a flat part of a mesh or grid has no normal gradient
+                for a in range(3):
+                    for b in range(3):
+                        curved = curved or dn[a, b] != 0.0
+                _point_loads(r, dr, v, acc, params[e], bed, gap[e, g], normal[e, g], grad_gap[e, g], dn,
+                             curved, v_x, a_x, jac, f, Ab, Bb, M, u, use_stick and stick[e, g], slip[e, g])
             w = dx[e, g]
             m = mass[e]
             for l in range(nloc):
