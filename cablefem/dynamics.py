@@ -56,10 +56,11 @@ class Integrator:
     AUTO_FULL_STEPS = 20
     #: smallest fraction of a Newton step the residual line search tries
     MIN_DAMPING = 1.0 / 16.0
-    #: times a rejected full Newton step is solved again from its base with the friction and
-    #: tension branches its trial point reached (``_newton``; 0: never). Snap loads on the flume
-    #: chain, P1 x 14 at dt 0.16 s: 13 failed attempts and 1306 evaluations without, none and
-    #: 882 with (verification/work_precision/README.md)
+    #: times a rejected full Newton step is solved again from its base with the friction,
+    #: contact and tension branches its trial point reached (``_newton``; 0: never). Snap loads
+    #: on the flume chain, P1 x 14 at dt 0.16 s: 13 failed attempts and 1306 evaluations
+    #: without, none and 882 with (verification/work_precision/README.md); an attempt that
+    #: fails with corrections is tried once more without
     MAX_CORRECTIONS = 2
     #: largest ratio of a step to the one before: variable-step BDF2 is zero-stable for ratios
     #: below 1 + sqrt(2) (Grigorieff 1983); halved steps grow back by doubling
@@ -159,11 +160,15 @@ class Integrator:
         """Newton on one attempted step (``_newton``), full or modified as ``newton`` says;
         "auto" with the compiled kernel chooses here, attempt by attempt (see the class)."""
         reuse = self.reuse_jacobian or (self.switching and self.full_steps_left <= 0)
-        X, rows, ok, trouble = self._newton(X1, point, factors, t_eval, reuse)
+        corrected = self.corrections
+        X, rows, ok, trouble = self._newton(X1, point, factors, t_eval, reuse, self.MAX_CORRECTIONS)
         if reuse and not ok:  # once more from the start: modified with a fresh tangent, or (auto) full
             trouble = True
             self._lu = None
-            X, rows, ok, _ = self._newton(X1, point, factors, t_eval, self.reuse_jacobian)
+            X, rows, ok, _ = self._newton(X1, point, factors, t_eval, self.reuse_jacobian, self.MAX_CORRECTIONS)
+        if not ok and self.corrections > corrected:  # corrected and failed: once more without
+            self._lu = None
+            X, rows, ok, _ = self._newton(X1, point, factors, t_eval, self.reuse_jacobian, 0)
         if self.switching:
             if reuse and trouble:
                 self.full_steps_left = self.AUTO_FULL_STEPS
@@ -171,7 +176,7 @@ class Integrator:
                 self.full_steps_left -= 1
         return X, rows, ok
 
-    def _newton(self, X1, point, factors, t_eval, reuse):
+    def _newton(self, X1, point, factors, t_eval, reuse, max_corrections):
         """Solve the step residual M A + G = 0 on the free rows for the new positions X1 (N, 3).
 
         point(X1) -> (X, V, A) where the loads are evaluated; factors = (v_x, a_x, g_x) with
@@ -197,22 +202,27 @@ class Integrator:
         seabed friction is a ramp of slope mu N / v_c up to the slip speed v_c and constant
         beyond (housner2022 Eq. 5-13), so at a sliding point Newton sees no friction stiffness
         along the slip and overshoots through the sticking branch; a slack element has no axial
-        stiffness and Newton overshoots it into a large tension. Before halving a rejected full
-        step, the step is solved again from its base (up to ``MAX_CORRECTIONS`` times) with
-        the points it took from sliding into the ramp or against their slip held on the ramp
-        and those it pulled taut held on the taut branch (value and slope of that branch at the
-        base: the semismooth Newton step of the branch the trial revealed), and the new trial
-        point faces the same Armijo test against the true residual. The solution is that of
-        the true residual; only the path to it changes.
+        stiffness and Newton overshoots it into a large tension; a point just above a stiff
+        seabed has no contact stiffness and Newton drives it deep into the seabed. Before
+        halving a rejected full step, the step is solved again from its base (up to
+        ``max_corrections`` times) with the points it took from sliding into the ramp or
+        against their slip held on the ramp, those it put on the seabed or lifted off held on
+        the trial's contact branch (spring and damper) and those it pulled taut held on the
+        taut branch (value and slope of that branch at the base: the semismooth Newton step of
+        the branch the trial revealed, ``_hold``), and the new trial point faces the same
+        Armijo test against the true residual; if no correction passes, the line search halves
+        Newton's own step. The solution is that of the true residual; only the path to it
+        changes. ``newton`` tries an attempt that failed with corrections once more without.
         """
         free = self.fem.free_dofs
-        v_x, a_x, g_x = factors
+        v_x, a_x, _ = factors
         rows = None
         fresh = not reuse or self._lu is None or self._lu_factors != factors
         previous, refreshed = None, False
         base, damping = None, 1.0  # (X1, norm, dX) of the last Newton step taken, its damping
         damped = False  # the point that step started from was reached by a damped step
-        base_slip, corrected = None, 0  # slip velocities at the base; its step was corrected
+        branches, corrected = None, 0  # the base's branches (slip, taut, contact); its step's corrections
+        original = None  # Newton's own step from the base, when corrected
         for _ in range(self.max_iterations):
             X, V, A = point(X1)
             # the tangent comes with the residual unless Newton's quadratic convergence from the
@@ -226,35 +236,27 @@ class Integrator:
             if norm <= self.tolerance and previous is not None:
                 return X1, rows, True, refreshed
             if base is not None and damping > self.MIN_DAMPING and not norm <= (1 - 1e-4 * damping) * base[1]:
-                if damping == 1.0 and corrected < self.MAX_CORRECTIONS and base_slip is not None and fresh:
-                    stuck = self._overshot(base_slip, self.fused.slip)
-                    pulled = ~base_taut & self.fused.taut
-                    if corrected:
-                        stuck |= self.fused.stick
-                        pulled |= self.fused.pull
-                    if (stuck.any() or pulled.any()) and not (corrected and np.array_equal(stuck, self.fused.stick)
-                                                              and np.array_equal(pulled, self.fused.pull)):
-                        corrected += 1
-                        self.corrections += 1
-                        self.fused.stick[:] = stuck
-                        self.fused.pull[:] = pulled
-                        X, V, A = point(base[0])
-                        model, tangent = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, True, stick=True)
-                        self.njev += 1
-                        self._lu = self.factorize(tangent, g_x, a_x)
-                        if self._lu is None:
-                            break
-                        self.nlu += 1
-                        self._lu_factors = factors
-                        dX = self.solve(self._lu, model)
-                        if not np.all(np.isfinite(dX)):
-                            break
-                        base = (base[0], base[1], dX)
-                        X1 = base[0].copy()
-                        X1[free] += dX
-                        self.newton_iterations += 1
-                        previous = float(np.max(np.abs(dX)))
-                        continue
+                if damping == 1.0 and corrected < max_corrections and branches is not None and fresh \
+                        and self._hold(branches, corrected > 0):  # Newton again from the base on the new branches
+                    corrected += 1
+                    self.corrections += 1
+                    X, V, A = point(base[0])
+                    model, tangent = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, True, stick=True)
+                    if not self._factor(tangent, factors):
+                        break
+                    dX = self.solve(self._lu, model)
+                    if not np.all(np.isfinite(dX)):
+                        break
+                    original = original if corrected > 1 else base[2]
+                    base = (base[0], base[1], dX)
+                    X1 = base[0].copy()
+                    X1[free] += dX
+                    self.newton_iterations += 1
+                    previous = float(np.max(np.abs(dX)))
+                    continue
+                if damping == 1.0 and corrected:  # no correction passed: the line search halves Newton's step
+                    base = (base[0], base[1], original)
+                    previous = float(np.max(np.abs(original)))
                 damping *= 0.5
                 X1 = base[0].copy()
                 X1[free] += damping * base[2]
@@ -264,18 +266,14 @@ class Integrator:
             if fresh:
                 if not with_tangent:
                     rows, tangent = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, True)
-                self.njev += 1
-                self._lu = self.factorize(tangent, g_x, a_x)
-                if self._lu is None:
+                if not self._factor(tangent, factors):
                     break
-                self.nlu += 1
-                self._lu_factors = factors
             dX = self.solve(self._lu, rows)
             if not np.all(np.isfinite(dX)):
                 break
             base, damping, damped = (X1, norm, dX), 1.0, damping < 1.0
             if self.fused is not None:
-                base_slip, base_taut, corrected = self.fused.slip.copy(), self.fused.taut.copy(), 0
+                branches, corrected = (self.fused.slip.copy(), self.fused.taut.copy(), self.fused.contact.copy()), 0
             X1 = X1.copy()
             X1[free] += dX
             self.newton_iterations += 1
@@ -292,14 +290,48 @@ class Integrator:
         self._lu = None
         return X1, rows, False, refreshed
 
-    def _overshot(self, base_slip, trial_slip):
-        """Full points (nel, nq) sliding at the base (|w| >= v_c) that a rejected Newton step
-        took, still on the seabed, into the ramp or against their slip direction."""
-        vc = self.fused.bed[5]
+    def _factor(self, tangent, factors):
+        """LU factors of the tangent for a Newton step into ``self._lu`` (counted); False if
+        singular."""
+        _, a_x, g_x = factors
+        self.njev += 1
+        self._lu = self.factorize(tangent, g_x, a_x)
+        if self._lu is None:
+            return False
+        self.nlu += 1
+        self._lu_factors = factors
+        return True
+
+    def _hold(self, base, again):
+        """Hold the branches a rejected Newton step's trial point reached, in the fused kernel's
+        ``hold`` (full points) and ``pull`` (reduced points) flags, as ``march._branches``:
+        friction on its ramp at the full points that slid at the base (|w| >= v_c) and that the
+        trial took, still on the seabed, into the ramp or against their slip; the seabed spring
+        and damper as the trial has them where it put a point on the seabed or lifted it off (a
+        resting point's damper alone switches back and forth); the taut branch at the
+        reduced points slack at the base that it pulled taut (with ``again``, also what is held
+        already). ``base``: the base's (slip, taut, contact). Returns whether anything is held
+        and the flags changed."""
+        from .fused import (CLOSING, DAMPER_OFF, DAMPER_ON, DAMPERS, STICK, TOUCH_OFF, TOUCH_ON, TOUCHES,
+                            TOUCHING)
+
+        ev = self.fused
+        base_slip, base_taut, base_contact = base
         before = np.linalg.norm(base_slip, axis=-1)
-        after = np.linalg.norm(trial_slip, axis=-1)
-        turned = np.einsum("eqa,eqa->eq", base_slip, trial_slip) <= 0.0
-        return (before >= vc) & (after > 0.0) & ((after < vc) | turned)
+        after = np.linalg.norm(ev.slip, axis=-1)
+        turned = np.einsum("eqa,eqa->eq", base_slip, ev.slip) <= 0.0
+        hold = np.where((before >= ev.bed[5]) & (after > 0.0) & ((after < ev.bed[5]) | turned), STICK, 0)
+        contact = np.where(ev.contact & TOUCHING, TOUCH_ON, TOUCH_OFF) | np.where(ev.contact & CLOSING, DAMPER_ON,
+                                                                                  DAMPER_OFF)
+        hold |= np.where((ev.contact ^ base_contact) & TOUCHING, contact, 0)  # not the damper alone
+        pull = ~base_taut & ev.taut
+        if again:
+            hold |= np.where(hold & (TOUCHES | DAMPERS), ev.hold & STICK, ev.hold)
+            pull |= ev.pull
+        hold = hold.astype(np.int8)
+        changed = not (np.array_equal(hold, ev.hold) and np.array_equal(pull, ev.pull))
+        ev.hold[:], ev.pull[:] = hold, pull
+        return bool(hold.any() or pull.any()) and (changed or not again)
 
     def rows_and_tangent(self, X, V, A, t, v_x, a_x, jacobian, stick=False):
         """Rows M A + G (N, 3) at the evaluation point and, with ``jacobian``, the tangent of the

@@ -32,6 +32,13 @@ from .loads.friction import AnisotropicFriction, IsotropicFriction
 from .loads.tension import SLACK_STIFFNESS
 
 
+#: branches a point's loads may be held on (``_point_loads``'s ``hold``, bits)
+STICK, DAMPER_ON, DAMPER_OFF, TOUCH_ON, TOUCH_OFF = 1, 2, 4, 8, 16
+DAMPERS, TOUCHES = DAMPER_ON | DAMPER_OFF, TOUCH_ON | TOUCH_OFF
+#: a point's contact state (``_point_loads``'s return, bits): on the seabed, the damper acting
+TOUCHING, CLOSING = 1, 2
+
+
 @njit(cache=True, inline="always", _nrt=False)
 def _add_outer(M, a, b, scale):
     """M += scale a b^T (3 x 3)."""
@@ -70,15 +77,17 @@ def _saturation(w, vc, scale, phi, dphi, stick):
 
 
 @njit(cache=True, _nrt=False)
-def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, curved, v_x, a_x, jac, f, Ab, Bb, M, u, stick,
+def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, curved, v_x, a_x, jac, f, Ab, Bb, M, u, hold,
                  slip):
     """Force f (3,) per unit length at one full quadrature point and the blocks A = -(f_r +
     v_x f_v + a_x f_a), B = -(f_dr) of the weak form (loads: weight, contact with friction,
     drag, added mass; p holds the element's parameters, bed the friction law; M (16, 3, 3)
     and u (16, 3) are scratch; ``curved``: the normal n varies, with gradient dn, which a plane's
-    does not: its terms are skipped). ``stick``: friction on its sticking branch whatever the
-    speed (the model Newton's stick correction solves, ``cablefem.dynamics``); slip (3,)
-    receives the slip velocity w (zero off the seabed or without friction)."""
+    does not: its terms are skipped). ``hold``: branches held whatever the state (the branch
+    corrections of ``cablefem.dynamics.Integrator._newton``): STICK friction on its ramp,
+    TOUCH_ON / TOUCH_OFF the seabed spring acting or not (on: -k d_G also above the seabed),
+    DAMPER_ON / DAMPER_OFF its damper acting or not; slip (3,) receives the slip velocity w (zero
+    off the seabed or without friction). Returns the contact state (TOUCHING, CLOSING bits)."""
     dry, buoy, k, c, drag_n, drag_t, cur0, cur1, cur2, am_n, am_t = p
     model, mu, mu_a, mu_t, fscale, vc = bed
     f[0] = 0.0
@@ -100,16 +109,17 @@ def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, curved, v_x, a_x, 
                 eye[i, j] = 1.0 if i == j else 0.0
                 P[i, j] = eye[i, j] - t[i] * t[j]
     # seabed contact (desire2023 Eq. 11) and friction (Eq. 12; housner2022 Eq. 5-13)
-    touching = gap < 0.0
+    touching = gap < 0.0 if (hold & TOUCHES) == 0 else (hold & TOUCH_ON) != 0
     pressure = -k * gap if touching else 0.0
     vn = _dot(v, n)
-    closing = touching and vn < 0.0 and c > 0.0
+    closing = touching and c > 0.0 and ((hold & DAMPER_ON) != 0 if (hold & DAMPERS) != 0 else vn < 0.0)
+    stick = (hold & STICK) != 0
     if closing:
         pressure -= c * vn
     for i in range(3):
         f[i] += pressure * n[i]
     if jac:
-        on = 1.0 if gap <= 0.0 else 0.0
+        on = (1.0 if gap <= 0.0 else 0.0) if (hold & TOUCHES) == 0 else (1.0 if touching else 0.0)
         for j in range(3):
             dp_dr[j] = -k * on * grad_gap[j]
             dp_dv[j] = 0.0
@@ -125,7 +135,8 @@ def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, curved, v_x, a_x, 
                 for j in range(3):
                     Ab[i, j] -= pressure * dn[i, j]
     slip[0], slip[1], slip[2] = 0.0, 0.0, 0.0
-    if model == 1 and touching:  # isotropic: dphi = gain I - ramp_off w w^T / |w|^3, w on the bed
+    rubbing = touching and gap < 0.0  # a point held on the seabed's spring above it has no friction
+    if model == 1 and rubbing:  # isotropic: dphi = gain I - ramp_off w w^T / |w|^3, w on the bed
         for i in range(3):
             w[i] = v[i] - vn * n[i]
             slip[i] = w[i]
@@ -152,7 +163,7 @@ def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, curved, v_x, a_x, 
                 dw_dr[:, :] = 0.0
                 _add_matmul(dw_dr, tmp, dn, 1.0)
                 _add_matmul(Ab, dphi, dw_dr, -1.0)
-    elif model == 2 and touching:
+    elif model == 2 and rubbing:
         for i in range(3):
             w[i] = v[i] - vn * n[i]
             slip[i] = w[i]
@@ -256,6 +267,7 @@ def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, curved, v_x, a_x, 
                 for j in range(3):
                     Ab[i, j] += a_x * stretch * ((am_n if i == j else 0.0) + diff * t[i] * t[j])
                     Bb[i, j] += per[i] * t[j] + diff * (along * P[i, j] + t[i] * (acc[j] - along * t[j]))
+    return (TOUCHING if touching else 0) | (CLOSING if closing else 0)
 
 
 @njit(cache=True, _nrt=False)
@@ -286,26 +298,27 @@ def _tension(dr, dv, EA, beta, pushes, v_x, jac, N, Dblk):
 
 @njit(cache=True)
 def _assemble(X, V, Acc, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass,
-              bed, plane, gap, normal, grad_gap, dnormal, v_x, a_x, jac, rows, band, kl, ku, stick, pull, use_stick,
-              slip, taut):
+              bed, plane, gap, normal, grad_gap, dnormal, v_x, a_x, jac, rows, band, kl, ku, hold, pull, use_stick,
+              slip, taut, contact):
     """Residual rows (N, 3) incl. inertia, and the banded tangent of the free unknowns. On a plane
     seabed ``plane`` is (nx, ny, nz, offset) and the gap is computed here (gap, normal, grad_gap
     and dnormal are then not read); otherwise ``plane`` is empty and they hold the projection.
-    With ``use_stick``, friction sticks at the full points where ``stick`` (nel, nq) is set and
-    the line pulls (and pushes) at the reduced points where ``pull`` (nel, nr) is set; slip
-    (nel, nq, 3) receives the slip velocities and taut (nel, nr) whether the points are taut."""
+    With ``use_stick``, the full points' loads keep the branches ``hold`` (nel, nq) holds (see
+    ``_point_loads``) and the line pulls (and pushes) at the reduced points where ``pull``
+    (nel, nr) is set; slip (nel, nq, 3) receives the slip velocities, taut (nel, nr) whether the
+    reduced points are taut and contact (nel, nq) the contact states (TOUCHING, CLOSING bits)."""
     nloc = dofs.shape[1]
     _assemble_loop(X, V, Acc, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass,
                    bed, plane, gap, normal, grad_gap, dnormal, v_x, a_x, jac, rows, band, kl, ku, position.max(),
                    np.zeros((7, 3)), np.zeros((4, 3, 3)), np.zeros((nloc, 3)), np.zeros((nloc, 3, nloc, 3)),
-                   np.zeros((12, 3, 3)), np.zeros((12, 3)), np.arange(dofs.shape[0]), stick, pull, use_stick, slip,
-                   taut)
+                   np.zeros((12, 3, 3)), np.zeros((12, 3)), np.arange(dofs.shape[0]), hold, pull, use_stick, slip,
+                   taut, contact)
 
 
 @njit(cache=True, _nrt=False)
 def _assemble_loop(X, V, Acc, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass, bed,
                    plane, gap, normal, grad_gap, dnormal, v_x, a_x, jac, rows, band, kl, ku, last, vec, blk,
-                   Re, Ke, M, u, elements, stick, pull, use_stick, slip, taut):
+                   Re, Ke, M, u, elements, hold, pull, use_stick, slip, taut, contact):
     """The loop of ``_assemble`` over ``elements`` on zeroed scratch it is given (vec (7, 3), blk
     (4, 3, 3), Re, Ke, M, u): it allocates nothing, so it runs without reference counting (see the
     module docstring)."""
@@ -332,16 +345,18 @@ def _assemble_loop(X, V, Acc, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, p
                     v[a] += phi[l, e, g] * V[i, a]
                     acc[a] += phi[l, e, g] * Acc[i, a]
             if on_plane:
-                _point_loads(r, dr, v, acc, params[e], bed, _dot(flat, r) - plane[3], flat, flat, zero, False,
-                             v_x, a_x, jac, f, Ab, Bb, M, u, use_stick and stick[e, g], slip[e, g])
+                contact[e, g] = _point_loads(r, dr, v, acc, params[e], bed, _dot(flat, r) - plane[3], flat, flat,
+                                            zero, False, v_x, a_x, jac, f, Ab, Bb, M, u,
+                                            hold[e, g] if use_stick else 0, slip[e, g])
             else:
                 dn = dnormal[e, g]
                 curved = False  # a point on a flat part of a mesh or grid has no normal gradient
                 for a in range(3):
                     for b in range(3):
                         curved = curved or dn[a, b] != 0.0
-                _point_loads(r, dr, v, acc, params[e], bed, gap[e, g], normal[e, g], grad_gap[e, g], dn,
-                             curved, v_x, a_x, jac, f, Ab, Bb, M, u, use_stick and stick[e, g], slip[e, g])
+                contact[e, g] = _point_loads(r, dr, v, acc, params[e], bed, gap[e, g], normal[e, g], grad_gap[e, g],
+                                            dn, curved, v_x, a_x, jac, f, Ab, Bb, M, u,
+                                            hold[e, g] if use_stick else 0, slip[e, g])
             w = dx[e, g]
             m = mass[e]
             for l in range(nloc):
@@ -446,7 +461,8 @@ class FusedEvaluator:
             self.plane = np.append(system.seabed.normal, system.seabed.offset).astype(float)
         self.unused = (np.zeros((1, 1)), np.zeros((1, 1, 3)), np.zeros((1, 1, 3)), np.zeros((1, 1, 3, 3)))
         nq = fem.full.dx.shape[1]
-        self.stick = np.zeros((nel, nq), dtype=bool)  # full points held on friction's sticking branch
+        self.hold = np.zeros((nel, nq), dtype=np.int8)  # branches the full points are held on (bits)
+        self.contact = np.zeros((nel, nq), dtype=np.int8)  # contact states of the last evaluation (bits)
         self.slip = np.zeros((nel, nq, 3))  # slip velocities of the last evaluation
         nr = fem.reduced.dx.shape[1]
         self.pull = np.zeros((nel, nr), dtype=bool)  # reduced points held on the taut branch
@@ -468,8 +484,9 @@ class FusedEvaluator:
 
     def evaluate(self, X, V, A, v_x, a_x, jacobian=True, stick=False):
         """Rows M A + G (N, 3) and, with ``jacobian``, the banded K + a_x M (LAPACK layout); with
-        ``stick``, friction on its sticking branch at the points ``self.stick`` holds. The slip
-        velocities go to ``self.slip``."""
+        ``stick``, the full points' loads on the branches ``self.hold`` holds and the reduced points
+        taut where ``self.pull`` says. The slip velocities, taut points and contact states go to
+        ``self.slip``, ``self.taut`` and ``self.contact``."""
         fem = self.system.fem
         self.tension[:, 2] = float(self.system.tension.compression)
         if self.plane.size:
@@ -489,7 +506,7 @@ class FusedEvaluator:
                   self.reduced.phi, self.reduced.dphi, self.reduced.dx, self.params, self.tension,
                   self.mass, self.bed, self.plane, np.ascontiguousarray(gap), np.ascontiguousarray(normal),
                   np.ascontiguousarray(grad), np.ascontiguousarray(dn), v_x, a_x, jacobian, rows,
-                  band, self.kl, self.ku, self.stick, self.pull, stick, self.slip, self.taut)
+                  band, self.kl, self.ku, self.hold, self.pull, stick, self.slip, self.taut, self.contact)
         return rows, (band if jacobian else None)
 
     def factorize(self, band, scale=1.0):

@@ -31,7 +31,7 @@ import numpy as np
 from numba import njit
 
 from .banded import lu_factor, lu_solve
-from .fused import _assemble_loop
+from .fused import CLOSING, DAMPER_OFF, DAMPER_ON, DAMPERS, STICK, TOUCH_OFF, TOUCH_ON, TOUCHES, TOUCHING, _assemble_loop
 from .geometry import DepthGrid, TriangulatedSurface
 from .geometry import _vertex_normal_jit as walk
 from .geometry.grid import _project as _grid_project
@@ -127,7 +127,7 @@ def _evaluate(kernel, projector, X1, V1, A1, c0, tangent, rows, band2, scratch, 
     """The step residual M A + G at X1, V1, A1 into ``rows`` over ``elements`` and, with
     ``tangent``, its banded tangent into ``band2`` (both zeroed first), the seabed projected first
     unless it is a plane (with its derivatives when a tangent is assembled); ``held``: the points
-    scratch's stick and pull flags hold on their branches (see ``_newton``). Returns the
+    scratch's hold and pull flags hold on their branches (see ``_newton``). Returns the
     projection's status (0, or the points the walk did not place)."""
     (dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass, bed, plane, gap,
      normal, grad_gap, dnormal, kl, ku) = kernel[:19]
@@ -136,48 +136,58 @@ def _evaluate(kernel, projector, X1, V1, A1, c0, tangent, rows, band2, scratch, 
         if lost != 0:
             return lost
     vec, blk, Re, Ke, M, u = scratch[:6]
-    stick, pull, slip, taut = scratch[7:11]
+    hold, pull, slip, taut, contact = scratch[7], scratch[8], scratch[9], scratch[10], scratch[13]
     rows[:] = 0.0
     if tangent:
         band2.T[:] = 0.0  # the contiguous (nb, ld) view: a memset, not a strided walk
     _assemble_loop(X1, V1, A1, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass, bed,
                    plane, gap, normal, grad_gap, dnormal, c0, c0 * c0, tangent, rows, band2, kl, ku,
-                   position.shape[0] - 1, vec, blk, Re, Ke, M, u, elements, stick, pull, held, slip,
-                   taut)  # position: a permutation
+                   position.shape[0] - 1, vec, blk, Re, Ke, M, u, elements, hold, pull, held, slip,
+                   taut, contact)  # position: a permutation
     counters[2] += 1
     return 0
 
 
 @njit(cache=True, _nrt=False)
 def _keep_branches(scratch):
-    """The base point's slip velocities and taut points, for ``_branches``."""
-    slip, taut, base_slip, base_taut = scratch[9], scratch[10], scratch[11], scratch[12]
+    """The base point's slip velocities, taut points and contact states, for ``_branches``."""
+    slip, taut, base_slip, base_taut, contact, base_contact = scratch[9:15]
     for e in range(slip.shape[0]):
         for g in range(slip.shape[1]):
             for a in range(3):
                 base_slip[e, g, a] = slip[e, g, a]
+            base_contact[e, g] = contact[e, g]
         for g in range(taut.shape[1]):
             base_taut[e, g] = taut[e, g]
 
 
 @njit(cache=True, _nrt=False)
 def _branches(scratch, vc, again):
-    """Hold (stick and pull flags in scratch) the full points that slid at the base (|w| >= vc)
-    and that a rejected Newton step took, still on the seabed, into the ramp or against their slip
-    direction, and the reduced points slack at the base that it pulled taut (with ``again``, also
-    those held already), as ``Integrator._overshot``. Returns whether any is held and the flags
-    changed."""
-    stick, pull, slip, taut, base_slip, base_taut = scratch[7:13]
+    """Hold (scratch's hold and pull flags) the branches a rejected Newton step's trial point
+    reached, as ``Integrator._hold``: friction on its ramp at the full points that slid at the
+    base (|w| >= vc) and that the trial took, still on the seabed, into the ramp or against their
+    slip; the seabed spring and damper as the trial has them where it put a point on the seabed
+    or lifted it off; the taut branch at the reduced points slack at the base that it pulled
+    taut (with ``again``, also what is held already). Returns whether anything is held and the
+    flags changed."""
+    hold, pull, slip, taut, base_slip, base_taut, contact, base_contact = scratch[7:15]
     held, changed = False, False
     for e in range(slip.shape[0]):
         for g in range(slip.shape[1]):
             before = np.sqrt(_dot3(base_slip[e, g], base_slip[e, g]))
             after = np.sqrt(_dot3(slip[e, g], slip[e, g]))
-            flag = before >= vc and after > 0.0 and (after < vc or _dot3(base_slip[e, g], slip[e, g]) <= 0.0)
-            flag = flag or (again and stick[e, g])
-            changed = changed or flag != stick[e, g]
-            stick[e, g] = flag
-            held = held or flag
+            flag = 0
+            if before >= vc and after > 0.0 and (after < vc or _dot3(base_slip[e, g], slip[e, g]) <= 0.0):
+                flag |= STICK
+            now = contact[e, g]
+            if ((now ^ base_contact[e, g]) & TOUCHING) != 0:  # not the damper alone: resting points chatter
+                flag |= (TOUCH_ON if (now & TOUCHING) != 0 else TOUCH_OFF) | (
+                    DAMPER_ON if (now & CLOSING) != 0 else DAMPER_OFF)
+            if again:
+                flag |= hold[e, g] if (flag & (TOUCHES | DAMPERS)) == 0 else hold[e, g] & STICK
+            changed = changed or flag != hold[e, g]
+            hold[e, g] = flag
+            held = held or flag != 0
         for g in range(taut.shape[1]):
             flag = (taut[e, g] and not base_taut[e, g]) or (again and pull[e, g])
             changed = changed or flag != pull[e, g]
@@ -193,7 +203,7 @@ def _dot3(a, b):
 
 @njit(cache=True, _nrt=False)
 def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key, rhs, base,
-            step, scratch, settings, counters, reuse):
+            step, scratch, settings, counters, reuse, max_corrections):
     """Newton on the step residual M A + G = 0 from X1 (updated in place), as
     ``Integrator._newton``: full (a fresh tangent each iteration) or, with ``reuse``,
     modified (the LU factors ``lu``/``ipiv`` kept across iterations and steps while the step's
@@ -210,7 +220,7 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
     nb = rhs.shape[0]
     ld = 2 * kl + ku + 1
     band2 = band.reshape((nb, ld)).T  # the (ld, nb) column-major view the assembly writes
-    multipliers = scratch[6]
+    multipliers, original = scratch[6], scratch[15]  # original: Newton's own step, when corrected
     fresh = not reuse or lu_key[0] != c0
     previous, refreshed = -1.0, False  # none yet
     base_norm, damping, min_damping = -1.0, 1.0, settings[7]  # base_norm < 0: no step taken yet
@@ -233,8 +243,10 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
         if norm <= tolerance and previous >= 0.0:
             return _CONVERGED, refreshed
         if base_norm >= 0.0 and damping > min_damping and not norm <= (1 - 1e-4 * damping) * base_norm:
-            if damping == 1.0 and corrections < settings[12] and fresh and _branches(
+            if damping == 1.0 and corrections < max_corrections and fresh and _branches(
                     scratch, kernel[11][5], corrections > 0):  # Newton again from the base on the new branches
+                if corrections == 0:
+                    _copy_flat(original, step)
                 corrections += 1
                 counters[6] += 1
                 _copy_rows(X1, base)
@@ -264,6 +276,11 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
                 counters[1] += 1
                 previous = size
                 continue
+            if damping == 1.0 and corrections > 0:  # no correction passed: the line search halves Newton's step
+                _copy_flat(step, original)
+                previous = 0.0
+                for j in range(nb):
+                    previous = max(previous, abs(original[j]))
             damping *= 0.5
             _copy_rows(X1, base)
             for j in range(free_order.shape[0]):
@@ -349,13 +366,19 @@ def _attempt(kernel, projector, state, history, h, position, anchor, settings, l
     # still to run in full Newton, as Integrator.newton chooses
     reuse = settings[5] == 1.0 or (settings[5] == 2.0 and lu_key[1] <= 0.0)
     _copy_rows(X1, guess)
+    corrected = counters[6]
     outcome, trouble = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key,
-                               rhs, base, step, scratch, settings, counters, reuse)
+                               rhs, base, step, scratch, settings, counters, reuse, settings[12])
     if reuse and outcome == _DIVERGED:  # once more from the start: modified with a fresh tangent, or full
         trouble = True
         _copy_rows(X1, guess)
         outcome, _ = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key,
-                             rhs, base, step, scratch, settings, counters, settings[5] == 1.0)
+                             rhs, base, step, scratch, settings, counters, settings[5] == 1.0, settings[12])
+    if outcome == _DIVERGED and counters[6] > corrected:  # corrected and failed: once more without
+        _copy_rows(X1, guess)
+        lu_key[0] = np.nan
+        outcome, _ = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key,
+                             rhs, base, step, scratch, settings, counters, settings[5] == 1.0, 0.0)
     if settings[5] == 2.0 and outcome != _LOST:
         if reuse and trouble:
             lu_key[1] = settings[9]
@@ -421,8 +444,9 @@ def bdf2_steps(kernel, projector, state, history, times, fairlead, fractions, an
             np.empty((N, 3)),
             (np.zeros((7, 3)), np.zeros((4, 3, 3)), np.zeros((nloc, 3)), np.zeros((nloc, 3, nloc, 3)),
              np.zeros((12, 3, 3)), np.zeros((12, 3)), np.empty(kernel[17] + 1),
-             np.zeros((nel, nq), dtype=np.bool_), np.zeros((nel, nr), dtype=np.bool_), np.zeros((nel, nq, 3)),
-             np.zeros((nel, nr), dtype=np.bool_), np.zeros((nel, nq, 3)), np.zeros((nel, nr), dtype=np.bool_)))
+             np.zeros((nel, nq), dtype=np.int8), np.zeros((nel, nr), dtype=np.bool_), np.zeros((nel, nq, 3)),
+             np.zeros((nel, nr), dtype=np.bool_), np.zeros((nel, nq, 3)), np.zeros((nel, nr), dtype=np.bool_),
+             np.zeros((nel, nq), dtype=np.int8), np.zeros((nel, nq), dtype=np.int8), np.empty(ipiv.shape[0])))
     stepping = fractions.shape[0] > 0
     growth, stretch, min_step = settings[10], settings[11], settings[8]
     parts = fractions.shape[1] + 1
