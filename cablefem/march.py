@@ -202,6 +202,52 @@ def _dot3(a, b):
 
 
 @njit(cache=True, _nrt=False)
+def _factor(lu, band, kl, ku, ipiv, multipliers, lu_key, c0, counters):
+    """LU factors of the tangent ``band`` into ``lu`` (counted; lu_key[0] the c0 they belong to,
+    NaN when singular). Returns False if singular."""
+    counters[3] += 1
+    _copy_flat(lu, band)
+    lu_key[0] = np.nan
+    if not lu_factor(lu, ipiv.shape[0], kl, ku, ipiv, multipliers):
+        return False
+    counters[4] += 1
+    lu_key[0] = c0
+    return True
+
+
+@njit(cache=True, _nrt=False)
+def _solve(lu, kl, ku, ipiv, rows, free_order, rhs):
+    """The Newton increment of the free unknowns for residual ``rows`` into ``rhs`` (band order);
+    returns its largest entry (inf or NaN if it is not finite)."""
+    for j in range(free_order.shape[0]):
+        for a in range(3):
+            rhs[3 * j + a] = -rows[free_order[j], a]
+    lu_solve(lu, rhs.shape[0], kl, ku, ipiv, rhs)
+    return _largest(rhs)
+
+
+@njit(cache=True, _nrt=False)
+def _largest(x):
+    """max |x_j|, or NaN if an entry is NaN."""
+    size = 0.0
+    for j in range(x.shape[0]):
+        v = abs(x[j])
+        if v != v:
+            return v
+        if v > size:
+            size = v
+    return size
+
+
+@njit(cache=True, _nrt=False)
+def _add_step(X1, free_order, step, scale):
+    """X1 += scale step on the free unknowns (step in band order)."""
+    for j in range(free_order.shape[0]):
+        for a in range(3):
+            X1[free_order[j], a] += scale * step[3 * j + a]
+
+
+@njit(cache=True, _nrt=False)
 def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key, rhs, base,
             step, scratch, settings, counters, reuse, max_corrections):
     """Newton on the step residual M A + G = 0 from X1 (updated in place), as
@@ -253,39 +299,22 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
                 _point(X1, x_hist, v_hist, c0, V1, A1)
                 _evaluate(kernel, projector, X1, V1, A1, c0, _FLAG[1], rows, band2, scratch, all_elements,
                           counters, _FLAG[1])
-                counters[3] += 1
-                _copy_flat(lu, band)
-                lu_key[0] = np.nan
-                if not lu_factor(lu, nb, kl, ku, ipiv, multipliers):
+                if not _factor(lu, band, kl, ku, ipiv, multipliers, lu_key, c0, counters):
                     break
-                counters[4] += 1
-                lu_key[0] = c0
-                for j in range(free_order.shape[0]):
-                    for a in range(3):
-                        rhs[3 * j + a] = -rows[free_order[j], a]
-                lu_solve(lu, nb, kl, ku, ipiv, rhs)
-                size = 0.0
-                for j in range(nb):
-                    size = max(size, abs(rhs[j]))
+                size = _solve(lu, kl, ku, ipiv, rows, free_order, rhs)
                 if not np.isfinite(size):
                     break
                 _copy_flat(step, rhs)
-                for j in range(free_order.shape[0]):
-                    for a in range(3):
-                        X1[free_order[j], a] += rhs[3 * j + a]
+                _add_step(X1, free_order, rhs, 1.0)
                 counters[1] += 1
                 previous = size
                 continue
             if damping == 1.0 and corrections > 0:  # no correction passed: the line search halves Newton's step
                 _copy_flat(step, original)
-                previous = 0.0
-                for j in range(nb):
-                    previous = max(previous, abs(original[j]))
+                previous = _largest(original)
             damping *= 0.5
             _copy_rows(X1, base)
-            for j in range(free_order.shape[0]):
-                for a in range(3):
-                    X1[free_order[j], a] += damping * step[3 * j + a]
+            _add_step(X1, free_order, step, damping)
             continue
         if not np.isfinite(norm):
             break
@@ -293,20 +322,9 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
             if not with_tangent:  # the same point again, with the tangent (the walk places it)
                 _evaluate(kernel, projector, X1, V1, A1, c0, _FLAG[1], rows, band2, scratch, all_elements,
                           counters)
-            counters[3] += 1
-            _copy_flat(lu, band)
-            lu_key[0] = np.nan
-            if not lu_factor(lu, nb, kl, ku, ipiv, multipliers):
+            if not _factor(lu, band, kl, ku, ipiv, multipliers, lu_key, c0, counters):
                 break
-            counters[4] += 1
-            lu_key[0] = c0
-        for j in range(free_order.shape[0]):
-            for a in range(3):
-                rhs[3 * j + a] = -rows[free_order[j], a]
-        lu_solve(lu, nb, kl, ku, ipiv, rhs)
-        size = 0.0
-        for j in range(nb):
-            size = max(size, abs(rhs[j]))
+        size = _solve(lu, kl, ku, ipiv, rows, free_order, rhs)
         if not np.isfinite(size):
             break
         _copy_rows(base, X1)
@@ -314,9 +332,7 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
         base_norm, damping, damped = norm, 1.0, damping < 1.0
         _keep_branches(scratch)
         corrections = 0
-        for j in range(free_order.shape[0]):
-            for a in range(3):
-                X1[free_order[j], a] += rhs[3 * j + a]
+        _add_step(X1, free_order, rhs, 1.0)
         counters[1] += 1
         rho = size / previous if previous > 0.0 else -1.0
         if (fresh and size <= increment_tolerance) or (
@@ -439,6 +455,11 @@ def bdf2_steps(kernel, projector, state, history, times, fairlead, fractions, an
     N = X.shape[0]
     nloc, nel, nq = kernel[2].shape
     nr = kernel[5].shape[2]
+    # _attempt's scratch: rhs, step, band, base, X1, V1, A1, guess, x_hist, v_hist, and the
+    # evaluation's and Newton's: vec, blk, Re, Ke, M, u (the kernel's), LU multipliers (6), the
+    # branch holds of full and reduced points (7, 8), slip velocities (9), taut points (10), the
+    # base's slip and taut points (11, 12), contact states and the base's (13, 14), Newton's own
+    # step when corrected (15)
     work = (np.empty(ipiv.shape[0]), np.empty(ipiv.shape[0]), np.zeros(lu.shape[0]), np.empty((N, 3)),
             np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)),
             np.empty((N, 3)),
