@@ -23,6 +23,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .branches import hold_branches
 from .errors import ConvergenceError
 from .march import DONE, FAILED, FRACTIONS, PROJECTION, Marcher
 
@@ -209,7 +210,7 @@ class Integrator:
         against their slip held on the ramp, those it put on the seabed or lifted off held on
         the trial's contact branch (spring and damper) and those it pulled taut held on the
         taut branch (value and slope of that branch at the base: the semismooth Newton step of
-        the branch the trial revealed, ``_hold``), and the new trial point faces the same
+        the branch the trial revealed, ``cablefem.branches``), and the new trial point faces the same
         Armijo test against the true residual; if no correction passes, the line search halves
         Newton's own step. The solution is that of the true residual; only the path to it
         changes. ``newton`` tries an attempt that failed with corrections once more without.
@@ -237,7 +238,7 @@ class Integrator:
                 return X1, rows, True, refreshed
             if base is not None and damping > self.MIN_DAMPING and not norm <= (1 - 1e-4 * damping) * base[1]:
                 if damping == 1.0 and corrected < max_corrections and branches is not None and fresh \
-                        and self._hold(branches, corrected > 0):  # Newton again from the base on the new branches
+                        and hold_branches(self.fused, branches, corrected > 0):  # Newton again from the base on the new branches
                     corrected += 1
                     self.corrections += 1
                     X, V, A = point(base[0])
@@ -301,37 +302,6 @@ class Integrator:
         self.nlu += 1
         self._lu_factors = factors
         return True
-
-    def _hold(self, base, again):
-        """Hold the branches a rejected Newton step's trial point reached, in the fused kernel's
-        ``hold`` (full points) and ``pull`` (reduced points) flags, as ``march._branches``:
-        friction on its ramp at the full points that slid at the base (|w| >= v_c) and that the
-        trial took, still on the seabed, into the ramp or against their slip; the seabed spring
-        and damper as the trial has them where it put a point on the seabed or lifted it off (a
-        resting point's damper alone switches back and forth); the taut branch at the
-        reduced points slack at the base that it pulled taut (with ``again``, also what is held
-        already). ``base``: the base's (slip, taut, contact). Returns whether anything is held
-        and the flags changed."""
-        from .fused import (CLOSING, DAMPER_OFF, DAMPER_ON, DAMPERS, STICK, TOUCH_OFF, TOUCH_ON, TOUCHES,
-                            TOUCHING)
-
-        ev = self.fused
-        base_slip, base_taut, base_contact = base
-        before = np.linalg.norm(base_slip, axis=-1)
-        after = np.linalg.norm(ev.slip, axis=-1)
-        turned = np.einsum("eqa,eqa->eq", base_slip, ev.slip) <= 0.0
-        hold = np.where((before >= ev.bed[5]) & (after > 0.0) & ((after < ev.bed[5]) | turned), STICK, 0)
-        contact = np.where(ev.contact & TOUCHING, TOUCH_ON, TOUCH_OFF) | np.where(ev.contact & CLOSING, DAMPER_ON,
-                                                                                  DAMPER_OFF)
-        hold |= np.where((ev.contact ^ base_contact) & TOUCHING, contact, 0)  # not the damper alone
-        pull = ~base_taut & ev.taut
-        if again:
-            hold |= np.where(hold & (TOUCHES | DAMPERS), ev.hold & STICK, ev.hold)
-            pull |= ev.pull
-        hold = hold.astype(np.int8)
-        changed = not (np.array_equal(hold, ev.hold) and np.array_equal(pull, ev.pull))
-        ev.hold[:], ev.pull[:] = hold, pull
-        return bool(hold.any() or pull.any()) and (changed or not again)
 
     def rows_and_tangent(self, X, V, A, t, v_x, a_x, jacobian, stick=False):
         """Rows M A + G (N, 3) at the evaluation point and, with ``jacobian``, the tangent of the

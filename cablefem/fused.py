@@ -24,19 +24,13 @@ import numpy as np
 from numba import njit
 from scipy.linalg import lapack
 
+from .branches import CLOSING, DAMPER_ON, DAMPERS, STICK, TOUCH_ON, TOUCHES, TOUCHING
 from .geometry import Plane
 from .loads.added_mass import AddedMass
 from .loads.contact import DEGENERATE_AXIS
 from .loads.drag import Drag
 from .loads.friction import AnisotropicFriction, IsotropicFriction
 from .loads.tension import SLACK_STIFFNESS
-
-
-#: branches a point's loads may be held on (``_point_loads``'s ``hold``, bits)
-STICK, DAMPER_ON, DAMPER_OFF, TOUCH_ON, TOUCH_OFF = 1, 2, 4, 8, 16
-DAMPERS, TOUCHES = DAMPER_ON | DAMPER_OFF, TOUCH_ON | TOUCH_OFF
-#: a point's contact state (``_point_loads``'s return, bits): on the seabed, the damper acting
-TOUCHING, CLOSING = 1, 2
 
 
 @njit(cache=True, inline="always", _nrt=False)

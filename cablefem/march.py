@@ -31,7 +31,8 @@ import numpy as np
 from numba import njit
 
 from .banded import lu_factor, lu_solve
-from .fused import CLOSING, DAMPER_OFF, DAMPER_ON, DAMPERS, STICK, TOUCH_OFF, TOUCH_ON, TOUCHES, TOUCHING, _assemble_loop
+from .branches import branches, keep_branches
+from .fused import _assemble_loop
 from .geometry import DepthGrid, TriangulatedSurface
 from .geometry import _vertex_normal_jit as walk
 from .geometry.grid import _project as _grid_project
@@ -149,59 +150,6 @@ def _evaluate(kernel, projector, X1, V1, A1, c0, tangent, rows, band2, scratch, 
 
 
 @njit(cache=True, _nrt=False)
-def _keep_branches(scratch):
-    """The base point's slip velocities, taut points and contact states, for ``_branches``."""
-    slip, taut, base_slip, base_taut, contact, base_contact = scratch[9:15]
-    for e in range(slip.shape[0]):
-        for g in range(slip.shape[1]):
-            for a in range(3):
-                base_slip[e, g, a] = slip[e, g, a]
-            base_contact[e, g] = contact[e, g]
-        for g in range(taut.shape[1]):
-            base_taut[e, g] = taut[e, g]
-
-
-@njit(cache=True, _nrt=False)
-def _branches(scratch, vc, again):
-    """Hold (scratch's hold and pull flags) the branches a rejected Newton step's trial point
-    reached, as ``Integrator._hold``: friction on its ramp at the full points that slid at the
-    base (|w| >= vc) and that the trial took, still on the seabed, into the ramp or against their
-    slip; the seabed spring and damper as the trial has them where it put a point on the seabed
-    or lifted it off; the taut branch at the reduced points slack at the base that it pulled
-    taut (with ``again``, also what is held already). Returns whether anything is held and the
-    flags changed."""
-    hold, pull, slip, taut, base_slip, base_taut, contact, base_contact = scratch[7:15]
-    held, changed = False, False
-    for e in range(slip.shape[0]):
-        for g in range(slip.shape[1]):
-            before = np.sqrt(_dot3(base_slip[e, g], base_slip[e, g]))
-            after = np.sqrt(_dot3(slip[e, g], slip[e, g]))
-            flag = 0
-            if before >= vc and after > 0.0 and (after < vc or _dot3(base_slip[e, g], slip[e, g]) <= 0.0):
-                flag |= STICK
-            now = contact[e, g]
-            if ((now ^ base_contact[e, g]) & TOUCHING) != 0:  # not the damper alone: resting points chatter
-                flag |= (TOUCH_ON if (now & TOUCHING) != 0 else TOUCH_OFF) | (
-                    DAMPER_ON if (now & CLOSING) != 0 else DAMPER_OFF)
-            if again:
-                flag |= hold[e, g] if (flag & (TOUCHES | DAMPERS)) == 0 else hold[e, g] & STICK
-            changed = changed or flag != hold[e, g]
-            hold[e, g] = flag
-            held = held or flag != 0
-        for g in range(taut.shape[1]):
-            flag = (taut[e, g] and not base_taut[e, g]) or (again and pull[e, g])
-            changed = changed or flag != pull[e, g]
-            pull[e, g] = flag
-            held = held or flag
-    return held and (changed or not again)
-
-
-@njit(cache=True, inline="always", _nrt=False)
-def _dot3(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-@njit(cache=True, _nrt=False)
 def _factor(lu, band, kl, ku, ipiv, multipliers, lu_key, c0, counters):
     """LU factors of the tangent ``band`` into ``lu`` (counted; lu_key[0] the c0 they belong to,
     NaN when singular). Returns False if singular."""
@@ -289,7 +237,7 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
         if norm <= tolerance and previous >= 0.0:
             return _CONVERGED, refreshed
         if base_norm >= 0.0 and damping > min_damping and not norm <= (1 - 1e-4 * damping) * base_norm:
-            if damping == 1.0 and corrections < max_corrections and fresh and _branches(
+            if damping == 1.0 and corrections < max_corrections and fresh and branches(
                     scratch, kernel[11][5], corrections > 0):  # Newton again from the base on the new branches
                 if corrections == 0:
                     _copy_flat(original, step)
@@ -330,7 +278,7 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
         _copy_rows(base, X1)
         _copy_flat(step, rhs)
         base_norm, damping, damped = norm, 1.0, damping < 1.0
-        _keep_branches(scratch)
+        keep_branches(scratch)
         corrections = 0
         _add_step(X1, free_order, rhs, 1.0)
         counters[1] += 1
