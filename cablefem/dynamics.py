@@ -243,10 +243,8 @@ class Integrator:
                     self.corrections += 1
                     X, V, A = point(base[0])
                     model, tangent = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, True, stick=True)
-                    if not self._factor(tangent, factors):
-                        break
-                    dX = self.solve(self._lu, model)
-                    if not np.all(np.isfinite(dX)):
+                    dX = self._increment(tangent, model, factors, True)
+                    if dX is None:
                         break
                     original = original if corrected > 1 else base[2]
                     base = (base[0], base[1], dX)
@@ -264,13 +262,10 @@ class Integrator:
                 continue
             if not np.isfinite(norm):
                 break
-            if fresh:
-                if not with_tangent:
-                    rows, tangent = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, True)
-                if not self._factor(tangent, factors):
-                    break
-            dX = self.solve(self._lu, rows)
-            if not np.all(np.isfinite(dX)):
+            if fresh and not with_tangent:
+                rows, tangent = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, True)
+            dX = self._increment(tangent, rows, factors, fresh)
+            if dX is None:
                 break
             base, damping, damped = (X1, norm, dX), 1.0, damping < 1.0
             if self.fused is not None:
@@ -291,17 +286,20 @@ class Integrator:
         self._lu = None
         return X1, rows, False, refreshed
 
-    def _factor(self, tangent, factors):
-        """LU factors of the tangent for a Newton step into ``self._lu`` (counted); False if
-        singular."""
-        _, a_x, g_x = factors
-        self.njev += 1
-        self._lu = self.factorize(tangent, g_x, a_x)
-        if self._lu is None:
-            return False
-        self.nlu += 1
-        self._lu_factors = factors
-        return True
+    def _increment(self, tangent, rows, factors, refactor):
+        """The Newton increment (N_free, 3) for residual ``rows``, with ``refactor`` from fresh LU
+        factors of ``tangent`` (counted, kept in ``self._lu``), else from the kept ones; None
+        if the tangent is singular or the increment not finite."""
+        if refactor:
+            _, a_x, g_x = factors
+            self.njev += 1
+            self._lu = self.factorize(tangent, g_x, a_x)
+            if self._lu is None:
+                return None
+            self.nlu += 1
+            self._lu_factors = factors
+        dX = self.solve(self._lu, rows)
+        return dX if np.all(np.isfinite(dX)) else None
 
     def rows_and_tangent(self, X, V, A, t, v_x, a_x, jacobian, stick=False):
         """Rows M A + G (N, 3) at the evaluation point and, with ``jacobian``, the tangent of the

@@ -150,23 +150,19 @@ def _evaluate(kernel, projector, X1, V1, A1, c0, tangent, rows, band2, scratch, 
 
 
 @njit(cache=True, _nrt=False)
-def _factor(lu, band, kl, ku, ipiv, multipliers, lu_key, c0, counters):
-    """LU factors of the tangent ``band`` into ``lu`` (counted; lu_key[0] the c0 they belong to,
-    NaN when singular). Returns False if singular."""
-    counters[3] += 1
-    _copy_flat(lu, band)
-    lu_key[0] = np.nan
-    if not lu_factor(lu, ipiv.shape[0], kl, ku, ipiv, multipliers):
-        return False
-    counters[4] += 1
-    lu_key[0] = c0
-    return True
-
-
-@njit(cache=True, _nrt=False)
-def _solve(lu, kl, ku, ipiv, rows, free_order, rhs):
-    """The Newton increment of the free unknowns for residual ``rows`` into ``rhs`` (band order);
-    returns its largest entry (inf or NaN if it is not finite)."""
+def _increment(refactor, lu, band, kl, ku, ipiv, multipliers, lu_key, c0, counters, rows, free_order, rhs):
+    """The Newton increment of the free unknowns for residual ``rows`` into ``rhs`` (band order),
+    with ``refactor`` from fresh LU factors of the tangent ``band`` (counted; lu_key[0] the c0
+    they belong to, NaN when singular), else from those in ``lu``. Returns its largest entry:
+    NaN if the tangent is singular, inf or NaN if the increment is not finite."""
+    if refactor:
+        counters[3] += 1
+        _copy_flat(lu, band)
+        lu_key[0] = np.nan
+        if not lu_factor(lu, ipiv.shape[0], kl, ku, ipiv, multipliers):
+            return np.nan
+        counters[4] += 1
+        lu_key[0] = c0
     for j in range(free_order.shape[0]):
         for a in range(3):
             rhs[3 * j + a] = -rows[free_order[j], a]
@@ -247,9 +243,8 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
                 _point(X1, x_hist, v_hist, c0, V1, A1)
                 _evaluate(kernel, projector, X1, V1, A1, c0, _FLAG[1], rows, band2, scratch, all_elements,
                           counters, _FLAG[1])
-                if not _factor(lu, band, kl, ku, ipiv, multipliers, lu_key, c0, counters):
-                    break
-                size = _solve(lu, kl, ku, ipiv, rows, free_order, rhs)
+                size = _increment(True, lu, band, kl, ku, ipiv, multipliers, lu_key, c0, counters, rows,
+                                  free_order, rhs)
                 if not np.isfinite(size):
                     break
                 _copy_flat(step, rhs)
@@ -266,13 +261,10 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
             continue
         if not np.isfinite(norm):
             break
-        if fresh:
-            if not with_tangent:  # the same point again, with the tangent (the walk places it)
-                _evaluate(kernel, projector, X1, V1, A1, c0, _FLAG[1], rows, band2, scratch, all_elements,
-                          counters)
-            if not _factor(lu, band, kl, ku, ipiv, multipliers, lu_key, c0, counters):
-                break
-        size = _solve(lu, kl, ku, ipiv, rows, free_order, rhs)
+        if fresh and not with_tangent:  # the same point again, with the tangent (the walk places it)
+            _evaluate(kernel, projector, X1, V1, A1, c0, _FLAG[1], rows, band2, scratch, all_elements, counters)
+        size = _increment(fresh, lu, band, kl, ku, ipiv, multipliers, lu_key, c0, counters, rows, free_order,
+                          rhs)
         if not np.isfinite(size):
             break
         _copy_rows(base, X1)
@@ -332,12 +324,12 @@ def _attempt(kernel, projector, state, history, h, position, anchor, settings, l
     _copy_rows(X1, guess)
     corrected = counters[6]
     outcome, trouble = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key,
-                               rhs, base, step, scratch, settings, counters, reuse, settings[12])
+                               rhs, base, step, scratch, settings, counters, reuse, settings[11])
     if reuse and outcome == _DIVERGED:  # once more from the start: modified with a fresh tangent, or full
         trouble = True
         _copy_rows(X1, guess)
         outcome, _ = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key,
-                             rhs, base, step, scratch, settings, counters, settings[5] == 1.0, settings[12])
+                             rhs, base, step, scratch, settings, counters, settings[5] == 1.0, settings[11])
     if outcome == _DIVERGED and counters[6] > corrected:  # corrected and failed: once more without
         _copy_rows(X1, guess)
         lu_key[0] = np.nan
@@ -377,8 +369,8 @@ def bdf2_steps(kernel, projector, state, history, times, fairlead, fractions, an
 
     With ``fractions`` (m, FRACTIONS - 1, 3), the fairlead at t_(k-1) + j (t_k - t_(k-1)) /
     FRACTIONS for j = 1 .. FRACTIONS - 1, each step is taken as ``Integrator.step`` takes it, line
-    for line: an attempt whose Newton fails is halved, no attempt is longer than settings[10]
-    times the last step, none leaves less than settings[11] of itself to go. The loop stops for
+    for line: an attempt whose Newton fails is halved, no attempt is longer than settings[4]
+    times the last step, none leaves less than settings[10] of itself to go. The loop stops for
     ``Integrator.step`` to go on when an attempt does not end on one of those points (TOO_LONG
     before it; FAILED when a halving would go deeper) or a halved step would be shorter than
     settings[8] (FAILED). Without (``fractions`` empty: ``BDF2.attempt``), step k is one attempt
@@ -389,10 +381,11 @@ def bdf2_steps(kernel, projector, state, history, times, fairlead, fractions, an
     prediction, rows), each (N, 3), updated in place (Xp, Vp: the step before's; rows: M A + G
     with only the anchor and fairlead rows evaluated); history: [t, h of the step before (0 at
     the start), the last step (0 if none), the stopping attempt's size], updated; settings:
-    [tolerance, increment tolerance, residual scale, max iterations, (unused), Newton (0 full,
-    1 modified, 2 auto), contraction limit, smallest line-search damping, smallest step, auto's
-    full-Newton attempts after trouble, largest growth of a step over the last, the stretch of
-    a step that lands on its end, corrections of a Newton step on new branches]; lu (n (2 kl + ku + 1),) (see ``cablefem.banded``), ipiv (n,),
+    [tolerance, increment tolerance, residual scale, max iterations, largest growth of a step
+    over the last, Newton (0 full, 1 modified, 2 auto), contraction limit, smallest line-search
+    damping, smallest step, auto's full-Newton attempts after trouble, the stretch of a step
+    that lands on its end, corrections of a Newton step on new branches]; lu
+    (n (2 kl + ku + 1),) (see ``cablefem.banded``), ipiv (n,),
     lu_key (2,): the c0 modified Newton's factors belong to (NaN: none) and auto's full-Newton
     attempts still to run, kept between calls; forces (m, 2, 3): the line's forces on fairlead
     and anchor after each step; counters: [steps, newton iterations, residual evaluations,
@@ -417,7 +410,7 @@ def bdf2_steps(kernel, projector, state, history, times, fairlead, fractions, an
              np.zeros((nel, nr), dtype=np.bool_), np.zeros((nel, nq, 3)), np.zeros((nel, nr), dtype=np.bool_),
              np.zeros((nel, nq), dtype=np.int8), np.zeros((nel, nq), dtype=np.int8), np.empty(ipiv.shape[0])))
     stepping = fractions.shape[0] > 0
-    growth, stretch, min_step = settings[10], settings[11], settings[8]
+    growth, stretch, min_step = settings[4], settings[10], settings[8]
     parts = fractions.shape[1] + 1
     for k in range(times.shape[0]):
         target = times[k] - history[0]
@@ -488,10 +481,10 @@ class Marcher:
         self.rule = fem.full  # positions at its quadrature points: the walk's start
         self.anchor = np.asarray(integ.system.line.anchor, dtype=float)
         self.settings = np.array([integ.tolerance, integ.increment_tolerance, integ.scale,
-                                  integ.max_iterations, np.inf,
+                                  integ.max_iterations, integ.MAX_GROWTH,
                                   2.0 if integ.switching else float(integ.reuse_jacobian),
                                   integ.CONTRACTION, integ.MIN_DAMPING, integ.min_dt, integ.AUTO_FULL_STEPS,
-                                  integ.MAX_GROWTH, integ.STRETCH, integ.MAX_CORRECTIONS])
+                                  integ.STRETCH, integ.MAX_CORRECTIONS])
         self.lu = np.zeros(ev.n * (2 * ev.kl + ev.ku + 1))  # LAPACK's column-major band, flat
         self.ipiv = np.zeros(ev.n, dtype=np.int64)
         self.lu_key = np.full(2, np.nan)
