@@ -180,25 +180,25 @@ def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, curved, v_x, a_x, 
         _saturation(un, vc, fscale, phi, dphi, stick)
         for i in range(3):
             dN[i] = -(mu_a * phia[i] + mu_t * phi[i])
-        # dF/dw = -N (ga q q^T + gt (I - q q^T)); dF/dq = -N (ga - gt)(q w^T + (w.q) I)
-        for i in range(3):
-            for j in range(3):
-                tmp[i, j] = q[i] * q[j]
-        dF_dw[:, :] = 0.0
-        _add_matmul(dF_dw, dphia, tmp, -pressure * mu_a)
-        for i in range(3):
-            for j in range(3):
-                tmp[i, j] = eye[i, j] - q[i] * q[j]
-        _add_matmul(dF_dw, dphi, tmp, -pressure * mu_t)
-        for i in range(3):
-            for j in range(3):
-                tmp[i, j] = q[i] * w[j] + (along if i == j else 0.0)
-        dF_dq[:, :] = 0.0
-        _add_matmul(dF_dq, dphia, tmp, -pressure * mu_a)
-        _add_matmul(dF_dq, dphi, tmp, pressure * mu_t)
         for i in range(3):
             f[i] += pressure * dN[i]
         if jac:
+            # dF/dw = -N (ga q q^T + gt (I - q q^T)); dF/dq = -N (ga - gt)(q w^T + (w.q) I)
+            for i in range(3):
+                for j in range(3):
+                    tmp[i, j] = q[i] * q[j]
+            dF_dw[:, :] = 0.0
+            _add_matmul(dF_dw, dphia, tmp, -pressure * mu_a)
+            for i in range(3):
+                for j in range(3):
+                    tmp[i, j] = eye[i, j] - q[i] * q[j]
+            _add_matmul(dF_dw, dphi, tmp, -pressure * mu_t)
+            for i in range(3):
+                for j in range(3):
+                    tmp[i, j] = q[i] * w[j] + (along if i == j else 0.0)
+            dF_dq[:, :] = 0.0
+            _add_matmul(dF_dq, dphia, tmp, -pressure * mu_a)
+            _add_matmul(dF_dq, dphi, tmp, pressure * mu_t)
             for i in range(3):
                 for j in range(3):
                     In[i, j] = eye[i, j] - n[i] * n[j]
