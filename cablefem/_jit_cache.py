@@ -14,8 +14,9 @@ import hashlib
 from pathlib import Path
 
 #: the sources of the compiled kernels and of the constants compiled into them
-KERNEL_SOURCES = ("fused.py", "march.py", "banded.py", "branches.py", "geometry/_vertex_normal_jit.py",
-                  "geometry/grid.py", "geometry/triangulated.py", "loads/tension.py", "loads/contact.py")
+KERNEL_SOURCES = ("fused.py", "point_loads.py", "march.py", "banded.py", "branches.py",
+                  "geometry/_vertex_normal_jit.py", "geometry/grid.py", "geometry/triangulated.py",
+                  "loads/tension.py", "loads/contact.py")
 STAMP = "kernels.sha256"
 
 

@@ -9,16 +9,16 @@ solves it again from its base with the points held on the branches the trial rea
 value and slope at the base: the semismooth Newton step on those branches). This module says
 which: ``hold_branches`` for the per-step Python path (``cablefem.fused.FusedEvaluator``'s
 flags), ``branches`` and ``keep_branches`` inside the compiled steps (``cablefem.march``'s
-scratch), the same rules; ``cablefem.fused._point_loads`` evaluates the held branches.
+scratch), the same rules; ``cablefem.point_loads._point_loads`` evaluates the held branches.
 """
 
 import numpy as np
 from numba import njit
 
-#: branches a point's loads may be held on (``hold`` bits of ``cablefem.fused._point_loads``)
+#: branches a point's loads may be held on (``hold`` bits of ``cablefem.point_loads._point_loads``)
 STICK, DAMPER_ON, DAMPER_OFF, TOUCH_ON, TOUCH_OFF = 1, 2, 4, 8, 16
 DAMPERS, TOUCHES = DAMPER_ON | DAMPER_OFF, TOUCH_ON | TOUCH_OFF
-#: a point's contact state (what ``cablefem.fused._point_loads`` returns, bits): in the seabed,
+#: a point's contact state (what ``cablefem.point_loads._point_loads`` returns, bits): in the seabed,
 #: its damper acting
 TOUCHING, CLOSING = 1, 2
 
