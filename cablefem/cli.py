@@ -64,11 +64,11 @@ def cmd_static(args):
     for note in scene.notes:
         print(f"  note: {note}")
     print(f"{'line':<12} {'fairlead T [N]':>15} {'anchor T [N]':>15} {'touchdown s [m]':>16} "
-          f"{'iters':>6} {'residual':>9}")
+          f"{'iters':>6} {'residual':>9} {'step/L':>9}")
     for rep, res in zip(reports, results):
         td = "-" if rep.touchdown_s is None else f"{rep.touchdown_s:.3f}"
         print(f"{rep.name:<12} {rep.fairlead_tension:15.6e} {rep.anchor_tension:15.6e} {td:>16} "
-              f"{res.iterations:6d} {res.residual:9.2e}")
+              f"{res.iterations:6d} {res.residual:9.2e} {res.increment:9.2e}")
     print(f"{iterations} Newton iterations in {wall:.3f} s")
     if args.json:
         write_json(args.json, {
@@ -79,6 +79,7 @@ def cmd_static(args):
             "seabed": scene.seabed.describe(),
             "notes": list(scene.notes),
             "residuals": [res.residual for res in results],
+            "scale_free_residuals": [res.increment for res in results],
         })
 
 

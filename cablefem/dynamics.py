@@ -95,6 +95,7 @@ class Integrator:
         self.nfev = self.njev = self.nlu = 0
         self.last_h = None  # the last accepted step [s]
         self.newton_iterations = self.steps = self.rejected = self.corrections = 0
+        self.last_residual = float("nan")  # the final relative residual of the last failed attempt
         self.residual_rows = None  # M A + G at the current state, (N, 3); compiled steps may fill only
         # the anchor and fairlead rows (the reactions), leaving the others zero
         self._lu, self._lu_factors = None, None
@@ -142,7 +143,11 @@ class Integrator:
             rows, with_mass = self.fused.evaluate(X, V, A, 0.0, 1.0)
             if np.linalg.norm(rows[fem.free_dofs]) > 1e-12 * self.scale:
                 mass = with_mass - self.fused.evaluate(X, V, A, 0.0, 0.0)[1]
-                A[fem.free_dofs] = self.fused.solve(self.fused.factorize(mass), rows)
+                factors = self.fused.factorize(mass)
+                if factors is None:
+                    raise ConvergenceError(f"{self.name}: the mass matrix is singular at t = {self.t:.6g} s "
+                                           "(check the line's mass and added-mass coefficients)")
+                A[fem.free_dofs] = self.fused.solve(factors, rows)
             return A
         residual, blocks = system.evaluate(system.state(X, V, A, self.t), jacobian=True,
                                            velocity_factor=0.0, acceleration_factor=1.0)
@@ -284,6 +289,7 @@ class Integrator:
             refreshed = refreshed or (reuse and fresh)
             previous = size
         self._lu = None
+        self.last_residual = norm
         return X1, rows, False, refreshed
 
     def _increment(self, tangent, rows, factors, refactor):
@@ -362,8 +368,9 @@ class Integrator:
         """The error of a step of size h whose Newton failed when half of it is below ``min_dt``."""
         return ConvergenceError(
             f"{self.name}: Newton did not converge at t = {self.t:.6g} s even with "
-            f"dt = {h:.3g} s; try a smaller dt, more elements or a softer seabed",
-            iterations=self.newton_iterations)
+            f"dt = {h:.3g} s (relative residual {self.last_residual:.3g}, tolerance "
+            f"{self.tolerance:g}); try a smaller dt, more elements or a softer seabed",
+            residual=self.last_residual, iterations=self.newton_iterations)
 
     def march(self, times):
         """Step to each of ``times`` (ascending, after t) in turn, each as ``step`` does; returns

@@ -168,9 +168,10 @@ class FusedEvaluator:
         loads = system.loads
         props = system.props
         nel = fem.n_elements
-        params = np.zeros((nel, 11))
+        params = np.zeros((nel, 12))
         params[:, 0] = system.weight.dry[:, 0]
         params[:, 1] = system.weight.buoyancy[:, 0]
+        params[:, 11] = system.weight.diameter[:, 0]
         params[:, 2] = system.contact.stiffness[:, 0]
         params[:, 3] = system.contact.damping[:, 0]
         for load in loads:

@@ -201,9 +201,10 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
     ``band`` (the size of ``lu``) takes a fresh tangent before it is factored into ``lu``; a step
     that does not reduce the residual norm is halved down to settings[7] (Armijo), from
     ``base`` (N, 3) along ``step`` (n,) (scratch).
-    Returns (outcome, refreshed): _CONVERGED, with V1, A1 and the end rows of ``rows`` at the
-    solution, _DIVERGED, or _LOST when the seabed projection (``projector``, see ``bdf2_steps``)
-    could not place a point; refreshed: kept factors were rebuilt for slow contraction."""
+    Returns (outcome, refreshed, the last relative residual): _CONVERGED, with V1, A1 and the end
+    rows of ``rows`` at the solution, _DIVERGED, or _LOST when the seabed projection
+    (``projector``, see ``bdf2_steps``) could not place a point; refreshed: kept factors were
+    rebuilt for slow contraction."""
     kl, ku, free_nodes, free_order, all_elements, end_elements = kernel[17:23]
     tolerance, increment_tolerance, scale = settings[0], settings[1], settings[2]
     contraction = settings[6]
@@ -212,7 +213,7 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
     band2 = band.reshape((nb, ld)).T  # the (ld, nb) column-major view the assembly writes
     multipliers, original = scratch[6], scratch[15]  # original: Newton's own step, when corrected
     fresh = not reuse or lu_key[0] != c0
-    previous, refreshed = -1.0, False  # none yet
+    previous, refreshed, norm = -1.0, False, np.inf  # none yet
     base_norm, damping, min_damping = -1.0, 1.0, settings[7]  # base_norm < 0: no step taken yet
     damped = False  # the step taken started from a point a damped step reached
     corrections = 0  # of the step from the base
@@ -224,14 +225,14 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
             base_norm < 0.0 or base_norm > np.sqrt(tolerance))
         if _evaluate(kernel, projector, X1, V1, A1, c0, with_tangent, rows, band2, scratch, all_elements,
                      counters) != 0:
-            return _LOST, refreshed
+            return _LOST, refreshed, norm
         norm = 0.0
         for i in free_nodes:
             for a in range(3):
                 norm += rows[i, a] * rows[i, a]
         norm = np.sqrt(norm) / scale
         if norm <= tolerance and previous >= 0.0:
-            return _CONVERGED, refreshed
+            return _CONVERGED, refreshed, norm
         if base_norm >= 0.0 and damping > min_damping and not norm <= (1 - 1e-4 * damping) * base_norm:
             if damping == 1.0 and corrections < max_corrections and fresh and branches(
                     scratch, kernel[11][5], corrections > 0):  # Newton again from the base on the new branches
@@ -281,13 +282,13 @@ def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, i
             _point(X1, x_hist, v_hist, c0, V1, A1)
             if _evaluate(kernel, projector, X1, V1, A1, c0, _FLAG[0], rows, band2, scratch, end_elements,
                          counters) != 0:
-                return _LOST, refreshed
-            return _CONVERGED, refreshed
+                return _LOST, refreshed, norm
+            return _CONVERGED, refreshed, norm
         fresh = not reuse or rho > contraction
         refreshed = refreshed or (reuse and fresh)
         previous = size
     lu_key[0] = np.nan
-    return _DIVERGED, refreshed
+    return _DIVERGED, refreshed, norm
 
 
 @njit(cache=True, _nrt=False)
@@ -323,18 +324,20 @@ def _attempt(kernel, projector, state, history, h, position, anchor, settings, l
     reuse = settings[5] == 1.0 or (settings[5] == 2.0 and lu_key[1] <= 0.0)
     _copy_rows(X1, guess)
     corrected = counters[6]
-    outcome, trouble = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key,
-                               rhs, base, step, scratch, settings, counters, reuse, settings[11])
+    outcome, trouble, last = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv,
+                                           lu_key, rhs, base, step, scratch, settings, counters, reuse, settings[11])
     if reuse and outcome == _DIVERGED:  # once more from the start: modified with a fresh tangent, or full
         trouble = True
         _copy_rows(X1, guess)
-        outcome, _ = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key,
-                             rhs, base, step, scratch, settings, counters, settings[5] == 1.0, settings[11])
+        outcome, _, last = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv,
+                                         lu_key, rhs, base, step, scratch, settings, counters, settings[5] == 1.0,
+                                         settings[11])
     if outcome == _DIVERGED and counters[6] > corrected:  # corrected and failed: once more without
         _copy_rows(X1, guess)
         lu_key[0] = np.nan
-        outcome, _ = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key,
-                             rhs, base, step, scratch, settings, counters, settings[5] == 1.0, 0.0)
+        outcome, _, last = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv,
+                                         lu_key, rhs, base, step, scratch, settings, counters, settings[5] == 1.0, 0.0)
+    history[4] = last
     if settings[5] == 2.0 and outcome != _LOST:
         if reuse and trouble:
             lu_key[1] = settings[9]
@@ -380,7 +383,8 @@ def bdf2_steps(kernel, projector, state, history, times, fairlead, fractions, an
     the walk's tables and warm start, scratch) (``Marcher.projector``); state: (X, V, A, Xp, Vp,
     prediction, rows), each (N, 3), updated in place (Xp, Vp: the step before's; rows: M A + G
     with only the anchor and fairlead rows evaluated); history: [t, h of the step before (0 at
-    the start), the last step (0 if none), the stopping attempt's size], updated; settings:
+    the start), the last step (0 if none), the stopping attempt's size, the last attempt's final
+    relative residual], updated; settings:
     [tolerance, increment tolerance, residual scale, max iterations, largest growth of a step
     over the last, Newton (0 full, 1 modified, 2 auto), contraction limit, smallest line-search
     damping, smallest step, auto's full-Newton attempts after trouble, the stretch of a step
@@ -530,7 +534,7 @@ class Marcher:
         h_before, Xp, Vp = (0.0, integ.X, integ.V) if integ.previous is None else integ.previous
         state = tuple(np.array(x, dtype=float) for x in (integ.X, integ.V, integ.A, Xp, Vp, integ.X,
                                                          np.zeros_like(integ.X)))
-        history = np.array([integ.t, h_before, integ.last_h or 0.0, 0.0])
+        history = np.array([integ.t, h_before, integ.last_h or 0.0, 0.0, np.nan])
         forces = np.empty((len(times), 2, 3))
         counters = np.zeros(7, dtype=np.int64)
         projector = self.projector(integ.X)
@@ -557,4 +561,6 @@ class Marcher:
             integ.X, integ.V, integ.A, integ.prediction, integ.residual_rows = X, V, A, prediction, rows
             integ.previous = (float(history[1]), Xp, Vp)
             integ.t, integ.last_h = float(history[0]), float(history[2])
+        if status != DONE:
+            integ.last_residual = float(history[4])
         return status, k, forces, float(history[3])

@@ -44,6 +44,20 @@ def _dot(a, b):
 
 
 @njit(cache=True, _nrt=False)
+def _submerged(z, diameter):
+    """Submerged fraction of the cross-section centred at height z and d/dz of it
+    (cablefem.loads.gravity.submerged_fraction)."""
+    if z <= -0.5 * diameter:
+        return 1.0, 0.0
+    if z >= 0.5 * diameter:
+        return 0.0, 0.0
+    h = 0.5 * diameter - z
+    theta = 2.0 * np.arccos(min(max(1.0 - 2.0 * h / diameter, -1.0), 1.0))
+    width = 8.0 * np.sqrt(max(h * (diameter - h), 0.0)) / (np.pi * diameter * diameter)
+    return (theta - np.sin(theta)) / (2.0 * np.pi), -width
+
+
+@njit(cache=True, _nrt=False)
 def _saturation(w, vc, scale, phi, dphi, stick):
     """phi(w) and dphi/dw of the saturated-damping law (cablefem.loads.friction.saturation);
     with ``stick``, of its ramp (the sticking branch) at any speed."""
@@ -68,21 +82,24 @@ def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, curved, v_x, a_x, 
     TOUCH_ON / TOUCH_OFF the seabed spring acting or not (on: -k d_G also above the seabed),
     DAMPER_ON / DAMPER_OFF its damper acting or not; slip (3,) receives the slip velocity w (zero
     off the seabed or without friction). Returns the contact state (TOUCHING, CLOSING bits)."""
-    dry, buoy, k, c, drag_n, drag_t, cur0, cur1, cur2, am_n, am_t = p
+    dry, buoy, k, c, drag_n, drag_t, cur0, cur1, cur2, am_n, am_t, diameter = p
     model, mu, mu_a, mu_t, fscale, vc = bed
+    submerged, dsubmerged = _submerged(r[2], diameter)  # weight and buoyancy (loads.gravity)
     f[0] = 0.0
     f[1] = 0.0
-    f[2] = -(dry - (buoy if r[2] < 0.0 else 0.0))
+    f[2] = -(dry - buoy * submerged)
     if jac:
         Ab[:, :] = 0.0
         Bb[:, :] = 0.0
+        Ab[2, 2] = -buoy * dsubmerged
     eye, P, tmp, dphi, dphia, dF_dw, dF_dq, dw_dr, In, dq_dp, dp_dn, dg = (
         M[0], M[1], M[2], M[3], M[4], M[5], M[6], M[7], M[8], M[9], M[10], M[11])
     t, w, phi, phia, q, dp_dr, dp_dv, dN, un, per, pv, va = (
         u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7], u[8], u[9], u[10], u[11])
     stretch = np.sqrt(_dot(dr, dr))
+    divisor = stretch if stretch > 0.0 else np.inf  # coincident points: t = 0 (loads.unit_tangent)
     for i in range(3):
-        t[i] = dr[i] / stretch
+        t[i] = dr[i] / divisor
     if jac:
         for i in range(3):
             for j in range(3):
@@ -200,7 +217,7 @@ def _point_loads(r, dr, v, acc, p, bed, gap, n, grad_gap, dn, curved, v_x, a_x, 
                     for j in range(3):
                         dq_dp[i, j] = (eye[i, j] - q[i] * q[j]) / size
                 tmp[:, :] = 0.0
-                _add_matmul(tmp, dq_dp, In, 1.0 / stretch)
+                _add_matmul(tmp, dq_dp, In, 1.0 / divisor)
                 _add_matmul(Bb, dF_dq, tmp, -1.0)
                 tn = _dot(n, t)
                 for i in range(3):
@@ -256,7 +273,8 @@ def _tension(dr, dv, EA, beta, pushes, v_x, jac, N, Dblk):
     ``pushes``: the line may push (T = EA e for all e: the statics start-up aid, and the model
     Newton's taut correction, ``cablefem.dynamics``). Returns whether the point is taut."""
     stretch = np.sqrt(_dot(dr, dr))
-    t0, t1, t2 = dr[0] / stretch, dr[1] / stretch, dr[2] / stretch
+    divisor = stretch if stretch > 0.0 else np.inf  # coincident points: t = 0 (loads.unit_tangent)
+    t0, t1, t2 = dr[0] / divisor, dr[1] / divisor, dr[2] / divisor
     e = stretch - 1.0
     rate = t0 * dv[0] + t1 * dv[1] + t2 * dv[2]
     T = EA * (e + beta * rate)
@@ -269,8 +287,8 @@ def _tension(dr, dv, EA, beta, pushes, v_x, jac, N, Dblk):
         on = 1.0 if active else 0.0
         for i in range(3):
             for j in range(3):
-                dT = EA * on * t[j] + EA * beta * on * (dv[j] - rate * t[j]) / stretch
+                dT = EA * on * t[j] + EA * beta * on * (dv[j] - rate * t[j]) / divisor
                 delta = 1.0 if i == j else 0.0
-                Dblk[i, j] = t[i] * dT + (T / stretch) * (delta - t[i] * t[j]) \
+                Dblk[i, j] = t[i] * dT + (T / divisor) * (delta - t[i] * t[j]) \
                     + SLACK_STIFFNESS * EA * (1.0 - on) * delta + v_x * EA * beta * on * t[i] * t[j]
     return e > 0.0 and T > 0.0

@@ -1,14 +1,17 @@
 """Static equilibrium by Newton's method with Armijo line search (desire2023 Sec. 2.3; Kelley 2003).
 
-Newton starts from an elastic catenary that touches the seabed, never from
-the straight chord, which converges to the inverse catenary (Fig. 5). It
-stops when the residual relative to the line's weight, or a full Newton
-increment relative to the line's length, falls below the tolerance. When
-Newton stalls (a guess far from the answer, say the one-weight catenary of
-a chain + polyester line), it falls back to pseudo-transient continuation,
-a damped pseudo-motion that ends in Newton, and then to continuation on the
-seabed stiffness (soft ground first, stiffened in steps); if that fails too,
-it stops with the residual and what to try.
+Newton starts from a shape close to the answer (``cablefem.start_shape``: the elastic catenary
+that touches the seabed, never the straight chord, which converges to the inverse catenary of
+Fig. 5; the slack layout of a line longer than it needs; the inverted catenary of a buoyant
+line). It stops when the residual relative to the line's weight falls below the tolerance, or
+when a full Newton step no longer reduces it and the step itself, the scale-free residual
+K^-1 G relative to the line's length, is below the tolerance (round-off: a position known to
+eps |X| leaves forces of eps |X| EA / h, which at large EA or seabed stiffness are far above any
+force tolerance). When Newton fails (a guess far from the answer), it falls back to
+pseudo-transient continuation, a damped pseudo-motion that ends in Newton, then to letting the
+line settle in water (``settle``: a lazy wave's buoyant section rising into its arch, slack chain
+sliding down a slope), then to continuation on the seabed stiffness (soft ground first, stiffened
+in steps); if that fails too, it stops with the residual and what to try.
 """
 
 import time
@@ -17,9 +20,14 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse.linalg as spla
 
-from .catenary import elastic_catenary, inclined_catenary
 from .errors import ConvergenceError
-from .geometry import Plane
+from .start_shape import initial_shape
+
+
+#: ``settle``: the time step [s] of the damped motion and the simulated time [s] between attempts of
+#: Newton to finish from where the line has got to (at most ``max_iterations`` of them: a lazy wave
+#: took 6-17, 1200 m of chain slack on a frictionless 5 deg slope 33-39)
+SETTLE_DT, SETTLE_CHUNK = 0.5, 10.0
 
 
 @dataclass
@@ -33,47 +41,15 @@ class StaticResult:
     history: list = field(default_factory=list)
     strategy: str = "newton"
     wall_time_s: float = 0.0
+    slack_start: bool = False  # started from the slack layout of a line longer than it needs
+    increment: float = float("nan")  # the scale-free residual: |K^-1 G|_max / L at X (``scale_free_residual``)
 
 
 def catenary_guess(system):
-    """Initial state (N, 3): the elastic catenary between anchor and fairlead in their vertical
-    plane, on the seabed's slope when the seabed is a plane under the anchor, lifted onto the
-    seabed wherever it would be buried."""
-    line, seabed, fem = system.line, system.seabed, system.fem
-    anchor, fairlead = line.anchor, line.fairlead
-    length = line.unstretched_length
-    chord = fairlead - anchor
-    span = float(np.hypot(*chord[:2]))
-    u = np.append(chord[:2] / span, 0.0) if span > 1e-9 * length else np.array([1.0, 0.0, 0.0])
-    pieces = np.array([seg.length for seg in line.segments])
-    env = system.environment
-    weight = float(pieces @ [s.type.submerged_weight(env.water_density, env.gravity)
-                             for s in line.segments] / length)
-    EA = float(length / np.sum(pieces / [seg.type.EA for seg in line.segments]))
-    gap = float(seabed.gap_only(anchor[None])[0])
-    on_seabed = abs(gap) <= 1e-6 * length
-    if isinstance(seabed, Plane) and on_seabed:
-        rise = seabed.elevation((anchor[:2] + u[:2])[None])[0] - seabed.elevation(anchor[:2][None])[0]
-        solution = inclined_catenary(span, chord[2], length, weight, np.arctan(rise), EA)
-    else:
-        solution = elastic_catenary(span, chord[2], length, EA, weight, seabed=on_seabed)
-
-    def positions(s):
-        x, z = solution.profile(s)
-        return anchor + x[:, None] * u + z[:, None] * np.array([0.0, 0.0, 1.0])
-
-    X = fem.interpolate(positions)
-    lagrange = fem.order <= 2
-    rows = slice(None) if lagrange else slice(0, fem.n_vertices)
-    points = X[rows]
-    proj = seabed.project(points)
-    # what rests on the seabed starts at the penetration that carries its weight, w n_z / (G_K d)
-    resting = proj.gap <= 1e-9 * length
-    sink = weight * proj.direction[:, 2] / float(np.max(system.contact.stiffness))
-    points[resting] = proj.closest[resting] - (sink[resting])[:, None] * proj.direction[resting]
-    X[rows] = points
-    X[fem.anchor_dof], X[fem.fairlead_dof] = anchor, fairlead
-    return X
+    """Initial state (N, 3) of a static solve (``cablefem.start_shape.initial_shape``): the elastic
+    catenary that touches the seabed, the slack layout of a line longer than it needs, or the
+    inverted catenary of a buoyant line."""
+    return initial_shape(system)[0]
 
 
 def newton(system, X, tolerance=1e-8, max_iterations=50, scale=None):
@@ -84,7 +60,6 @@ def newton(system, X, tolerance=1e-8, max_iterations=50, scale=None):
     length = system.line.unstretched_length
     scale = scale or float(np.linalg.norm(system.weight_vector()[free])) or 1.0
     X = X.copy()
-    floor = residual_floor(system, X, scale)
     linear = _Linearisation.of(system)
     residual, tangent = linear.evaluate(X)
     norm = np.linalg.norm(residual[free]) / scale
@@ -119,9 +94,11 @@ def newton(system, X, tolerance=1e-8, max_iterations=50, scale=None):
             lam = _parabolic_step(lam, norm, norm_t)
         if not accepted:
             return X, iteration, norm, history, False
-        # a full Newton step that no longer halves the residual has hit round-off: converged
-        # if that is where the residual stands, not if Newton merely stalls above it
-        stalled = lam == 1.0 and norm_t > 0.5 * norm and norm_t <= floor
+        # a full Newton step that no longer halves the residual has hit round-off: converged if
+        # the step itself, the residual in the tangent's own units (K^-1 G [m], free of the
+        # stiffnesses' scale), is below the tolerance of the line's length; not if Newton merely
+        # stalls above it (a residual floor scaled by EA and G_K accepted anything at large EA)
+        stalled = lam == 1.0 and norm_t > 0.5 * norm and small
         X, residual, tangent, norm, energy = trial, residual_t, tangent_t, norm_t, energy_t
         history.append(norm)
         if norm <= tolerance or stalled:
@@ -166,16 +143,16 @@ class _Linearisation:
         return None if factors is None else self.fused.solve(factors, residual)
 
 
-def residual_floor(system, X, scale):
-    """A bound on the relative residual that round-off alone leaves at state X: a position
-    known to eps |X| makes forces of eps |X| (EA / h + G_K d h) in a row (tension and seabed
-    springs), summed over the rows in the 2-norm; measured floors sit 1-100 times below."""
-    nodes = system.fem.mesh.p[0]
-    h = np.diff(nodes)
-    stiffness = float(np.max(system.props["EA"] / h) + np.max(system.contact.stiffness[:, 0] * h))
-    eps = np.finfo(float).eps
-    rows = 3 * len(system.fem.free_dofs)
-    return eps * float(np.max(np.abs(X))) * stiffness * np.sqrt(rows) / scale
+def scale_free_residual(system, X):
+    """The residual at X (N, 3) in the tangent's own units: the largest entry of the Newton step
+    K^-1 G [m] over the line's length. A force residual relative to the weight depends on the
+    stiffnesses (a position known to round-off eps |X| leaves forces eps |X| EA / h); this does not."""
+    linear = _Linearisation.of(system)
+    residual, tangent = linear.evaluate(X)
+    step = linear.solve(tangent, residual)
+    if step is None:
+        return float("inf")
+    return float(np.max(np.abs(step))) / system.line.unstretched_length
 
 
 def _parabolic_step(lam, f0, f1):
@@ -186,26 +163,66 @@ def _parabolic_step(lam, f0, f1):
 
 
 def solve_static(system, X0=None, tolerance=1e-8, max_iterations=50):
-    """Static equilibrium of one line system from the catenary guess (or X0); a StaticResult."""
+    """Static equilibrium of one line system from the catenary guess (or X0); a StaticResult.
+
+    Newton first; if it fails, pseudo-transient continuation (a damped pseudo-motion), then the
+    line let go in water until it settles (``settle``: a buoyant section rising off the seabed
+    into its arch, which Newton cannot reach from a start with the section lying slack), then
+    continuation on the seabed stiffness, each from the start."""
     start = time.perf_counter()
-    X = catenary_guess(system) if X0 is None else X0
-    X1, its, norm, history, ok = _tension_only(system, X, tolerance, max_iterations)
-    if ok:
-        return StaticResult(X1, its, norm, history, "newton", time.perf_counter() - start)
-    X2, its2, norm2, history2, ok = pseudo_transient(system, X, tolerance, 10 * max_iterations)
-    total, history = its + its2, history + history2
-    if ok:
-        return StaticResult(X2, total, norm2, history, "pseudo-transient", time.perf_counter() - start)
-    X3, its3, norm3, history3, ok = _stiffness_continuation(system, X, tolerance, max_iterations)
-    total, history, norm2 = total + its3, history + history3, min(norm2, norm3)
-    if ok:
-        return StaticResult(X3, total, norm3, history, "continuation", time.perf_counter() - start)
+    X, slack = initial_shape(system) if X0 is None else (X0, False)
+    strategies = [("newton", lambda: _tension_only(system, X, tolerance, max_iterations, push=not slack)),
+                  ("pseudo-transient", lambda: pseudo_transient(system, X, tolerance, 10 * max_iterations)),
+                  ("settling", lambda: settle(system, X, tolerance, max_iterations)),
+                  ("continuation", lambda: _stiffness_continuation(system, X, tolerance, max_iterations))]
+    total, history, best = 0, [], np.inf
+    for name, strategy in strategies:
+        X1, its, norm, hist, ok = strategy()
+        total, history, best = total + its, history + hist, min(best, norm)
+        if ok:
+            return StaticResult(X1, total, norm, history, name, time.perf_counter() - start, slack,
+                                scale_free_residual(system, X1))
     raise ConvergenceError(
         f"line '{system.line.name}': static solve did not converge: relative residual "
-        f"{min(norm, norm2):.3g} after {total} Newton iterations (tolerance {tolerance:g}); "
+        f"{best:.3g} after {total} Newton iterations (tolerance {tolerance:g}); "
         "try more elements, a lower element order, a softer seabed stiffness, or check that "
         "the fairlead is within reach of the line",
-        residual=min(norm, norm2), iterations=total)
+        residual=best, iterations=total)
+
+
+def settle(system, X, tolerance=1e-8, max_iterations=50):
+    """Let the line go from X (N, 3) in still water, ends held, and follow it (BDF2 with large steps:
+    strongly damped) with drag, added mass and seabed damping until Newton on the static residual
+    converges from where it has got to: however the physics settles it (a buoyant section rising
+    into its arch, slack chain folding). Drag coefficients below 1.2 normal and 0.5 tangential
+    are raised to them for the settling; at most ``max_iterations`` rounds of ``SETTLE_CHUNK``. Same
+    returns as ``newton``."""
+    from .dynamics import BDF2
+    from .loads.added_mass import AddedMass
+    from .loads.drag import Drag
+    from .system import LineSystem
+
+    props, env = system.props, system.environment
+    drag = Drag(props["diameter"], np.maximum(props["Cd_normal"], 1.2), np.maximum(props["Cd_tangential"], 0.5),
+                env.water_density)
+    added = AddedMass(props["diameter"], props["Ca_normal"], props["Ca_tangential"], env.water_density)
+    moving = LineSystem(system.line, system.seabed, system.contact_settings, env, extra_loads=[drag, added],
+                        assembly=system.assembly, fem=system.fem)
+    fairlead = system.line.fairlead.copy()
+    zero = np.zeros(3)
+    integ = BDF2(moving, X, lambda t: (fairlead, zero, zero), dt=SETTLE_DT, tolerance=1e-6)
+    total, history, norm = 0, [], np.inf
+    try:
+        for _ in range(max_iterations):
+            integ.march(integ.t + SETTLE_DT * np.arange(1, int(SETTLE_CHUNK / SETTLE_DT) + 1))
+            X1, its, norm, hist, ok = newton(system, integ.X, tolerance, max_iterations)
+            total, history = total + its + integ.steps, history + hist
+            integ.steps = 0
+            if ok:
+                return X1, total, norm, history, True
+    except ConvergenceError:
+        pass
+    return integ.X, total, norm, history, False
 
 
 def pseudo_transient(system, X, tolerance=1e-8, max_iterations=500):
@@ -224,7 +241,6 @@ def pseudo_transient(system, X, tolerance=1e-8, max_iterations=500):
     # start with steps the size of a free fall over a tenth of an element
     tau = 0.1 * float(np.min(np.diff(fem.mesh.p[0]))) / system.environment.gravity
     X = X.copy()
-    floor = residual_floor(system, X, scale)
     for iteration in range(1, max_iterations + 1):
         if norm <= tolerance:
             return X, iteration - 1, norm, history, True
@@ -239,7 +255,7 @@ def pseudo_transient(system, X, tolerance=1e-8, max_iterations=500):
         residual, blocks = system.evaluate(system.state(X))
         new = np.linalg.norm(residual[free]) / scale
         tau *= min(norm / new, 10.0) if new > 0 else 10.0
-        stalled = tau > 1e6 and new > 0.5 * norm and new <= floor
+        stalled = tau > 1e6 and new > 0.5 * norm and np.max(np.abs(step)) <= tolerance * length
         norm = new
         history.append(norm)
         if stalled:
@@ -247,14 +263,18 @@ def pseudo_transient(system, X, tolerance=1e-8, max_iterations=500):
     return X, max_iterations, norm, history, norm <= tolerance
 
 
-def _tension_only(system, X, tolerance, max_iterations):
-    """Newton with a line that may push first, then with the real tension-only line.
+def _tension_only(system, X, tolerance, max_iterations, push=True):
+    """Newton with a line that may push first (``push``), then with the real tension-only line.
 
     A piecewise-linear guess of a curved line has chords shorter than their arcs, so some
     elements of the guess are slack: the tension-only law gives them no stiffness and Newton
     crawls. Letting them push removes the kink; if no element is compressed at that solution
     it is also the tension-only one, otherwise Newton continues from it without compression.
+    A guess that lays out slack line on purpose (``cablefem.start_shape``) starts without: there
+    pushing would straighten what must lie slack.
     """
+    if not push:
+        return newton(system, X, tolerance, max_iterations)
     tension = system.tension
     tension.compression = True
     try:
@@ -290,83 +310,5 @@ def _stiffness_continuation(system, X, tolerance, max_iterations, factor=10.0):
     return X, total, norm, history, True
 
 
-def solve_line(line, seabed, contact, environment, fit_touchdown=True, tolerance=1e-8,
-               max_iterations=50, assembly="kernel", max_fits=4):
-    """Static equilibrium of one line; returns (LineSystem, StaticResult).
-
-    The solution has a jump of curvature at the touchdown point (straight on the seabed,
-    a catenary above it) that no element can hold inside itself: unfitted, it limits every
-    element order to the slow convergence of obstacle problems. With ``fit_touchdown``, on a
-    plane seabed under the anchor, the mesh gets a vertex at the touchdown and is re-solved
-    until that vertex stops moving, so each element holds a smooth piece and the element
-    order pays off (verification/elastic_catenary). The touchdown is located from the
-    seabed's total reaction: on a frictionless plane the resting part carries exactly its own
-    normal weight, so the reaction fixes the resting length, where the place at which the
-    gap changes sign (tangent to the seabed there) is ill-conditioned.
-    """
-    from .system import LineSystem
-
-    def build(candidate):
-        return LineSystem(candidate, seabed, contact, environment, assembly=assembly)
-
-    system = build(line)
-    result = solve_static(system, tolerance=tolerance, max_iterations=max_iterations)
-    length = line.unstretched_length
-    if not (fit_touchdown and anchored_on_plane(line, seabed)):
-        return system, result
-    iterations, elapsed = result.iterations, result.wall_time_s
-    vertex, settled = None, False
-    for _ in range(max_fits):
-        estimate = resting_length(system, result.X)
-        settled = estimate is None or not (0.0 < estimate < length) or (
-            vertex is not None and abs(estimate - vertex) <= 1e-6 * length)
-        if settled:
-            break
-        vertex = estimate
-        fitted = build(line.split_at(vertex))
-        previous_system, previous = system, result
-        guess = fitted.fem.interpolate(lambda s: previous_system.fem.evaluate(previous.X, s))
-        start = time.perf_counter()
-        X, its, norm, history, ok = _tension_only(fitted, guess, tolerance, max_iterations)
-        iterations += its
-        elapsed += time.perf_counter() - start
-        if not ok:  # a refinement only: keep the last converged solution
-            break
-        system, result = fitted, StaticResult(X, its, norm, history, "newton")
-    if not settled:
-        result.strategy += " (touchdown vertex did not settle)"
-    result.iterations, result.wall_time_s = iterations, elapsed
-    return system, result
-
-
-def anchored_on_plane(line, seabed):
-    """True when the seabed is a plane and the line's anchor lies on it (within its resting
-    penetration): the setting where the resting length locates the touchdown."""
-    from .geometry import Plane
-
-    if not isinstance(seabed, Plane):
-        return False
-    return abs(seabed.gap_only(line.anchor[None])[0]) <= 1e-3 * line.unstretched_length / len(
-        line.node_arc_lengths())
-
-
-def resting_length(system, X):
-    """Arc length [m] from the anchor that the seabed's reaction (contact force plus the anchor's
-    normal reaction) can carry at the line's normal weight, on a plane seabed; None without contact."""
-    state = system.state(X)
-    normal = system.seabed.normal
-    force = system.contact.evaluate(state, jacobian=False).force
-    reaction = np.sum(np.einsum("ceq,c->eq", force, normal) * system.fem.full.dx)
-    if reaction <= 0.0:
-        return None
-    reaction += system.residual(X)[system.fem.anchor_dof] @ normal
-    # cumulative normal weight along the line, element by element (piecewise constant w)
-    env = system.environment
-    props = system.props
-    w = (props["mass"] - env.water_density * props["area"]) * env.gravity * normal[2]
-    nodes = system.fem.mesh.p[0]
-    cumulative = np.concatenate([[0.0], np.cumsum(w * np.diff(nodes))])
-    k = int(np.searchsorted(cumulative, reaction)) - 1
-    if k < 0 or k >= len(w):
-        return None
-    return float(nodes[k] + (reaction - cumulative[k]) / w[k])
+# solve_line and the touchdown fitting live in cablefem.touchdown, which builds on this module
+from .touchdown import anchored_on_plane, resting_length, solve_line  # noqa: E402, F401

@@ -47,6 +47,7 @@ class LineSystem:
                  extra_loads=(), assembly="kernel", friction=None, fem=None):
         self.line = line
         self.assembly = assembly
+        self.contact_settings = contact  # the scene's ``Contact``, for another system of this line
         self.seabed = seabed
         self.environment = environment
         # a line moved to another fairlead has the same mesh in arc length: its FEM can be shared
@@ -175,7 +176,7 @@ class LineSystem:
     def weight_vector(self):
         """Assembled weight load rows (N, 3) of the line fully submerged [N] (a force scale)."""
         r = np.zeros((3,) + self.fem.s.shape)
-        r[2] = -1.0
+        r[2] = -1.0 - float(np.max(self.weight.diameter))  # fully submerged
         return self.fem.assemble_vector(force=self.weight.evaluate(State(r, r)).force)
 
 

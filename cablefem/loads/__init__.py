@@ -50,6 +50,16 @@ class Terms:
     flux_dv: np.ndarray | None = None
 
 
+def unit_tangent(dr):
+    """Unit tangent t = r'/|r'| (3, ...), the stretch |r'| (...) and |r'| as a divisor (...) of
+    dr/ds (3, ...): where two points of the line coincide (|r'| = 0: a fold, a coincident start)
+    the divisor is infinite, so t and every quotient by it are 0 there and a load that scales with
+    the stretch or acts along t gives nothing."""
+    stretch = np.sqrt(np.einsum("c...,c...->...", dr, dr))
+    divisor = np.where(stretch > 0.0, stretch, np.inf)
+    return dr / divisor, stretch, divisor
+
+
 def outer(a, b):
     """Pointwise outer products of (3, ...) arrays, shape (3, 3, ...)."""
     return a[:, None] * b[None, :]

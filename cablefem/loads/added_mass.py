@@ -13,7 +13,7 @@ added mass elsewhere) the load contributes nothing.
 
 import numpy as np
 
-from . import Terms, identity_like, outer
+from . import Terms, identity_like, outer, unit_tangent
 
 
 class AddedMass:
@@ -27,16 +27,14 @@ class AddedMass:
 
     def matrix(self, dr):
         """Added mass per unit unstretched length |r'| rho A (Ca_n P + Ca_t T) [kg/m] (3, 3, nel, nq)."""
-        stretch = np.sqrt(np.einsum("ceq,ceq->eq", dr, dr))
-        t = dr / stretch
+        t, stretch, _ = unit_tangent(dr)
         return stretch * (self.normal * identity_like(t) + (self.tangential - self.normal) * outer(t, t))
 
     def evaluate(self, state, jacobian=True):
         if state.a is None:
             return Terms()
         dr, a = state.dr, state.a
-        stretch = np.sqrt(np.einsum("ceq,ceq->eq", dr, dr))
-        t = dr / stretch
+        t, stretch, _ = unit_tangent(dr)
         along = np.einsum("ceq,ceq->eq", a, t)
         difference = self.tangential - self.normal
         per_stretched = self.normal * a + difference * along * t  # (Ca_n P + Ca_t T) rho A a

@@ -28,7 +28,7 @@ sliding counts as transverse.
 import numpy as np
 
 from ..geometry.triangulated import TriangulatedSurface
-from . import Terms, add, compose, identity_like, outer
+from . import Terms, add, compose, identity_like, outer, unit_tangent
 
 #: |(I - d_P d_P) t| below which the in-plane axial direction q is taken as 0
 DEGENERATE_AXIS = 1e-12
@@ -64,7 +64,7 @@ class SeabedContact:
         terms = Terms(force=pressure * n)
         if sliding:
             v_plane = state.v - vn * n
-            axis, axis_norm, t, stretch = _axis(state.dr, n) if self.friction.uses_axis else (None,) * 4
+            axis, axis_norm, t, divisor = _axis(state.dr, n) if self.friction.uses_axis else (None,) * 4
             friction, df_dw, df_dN, df_dq = self.friction.evaluate(v_plane, pressure, axis)
             terms.force = terms.force + friction
         if not jacobian:
@@ -96,7 +96,7 @@ class SeabedContact:
                 # q = p / |p|, p = (I - n n^T) t, t = r'/|r'|; the t t^T part of dt/dr' drops
                 # out, since (I - q q^T)(I - n n^T) t = (I - q q^T) |p| q = 0
                 dq_dp = (eye - outer(axis, axis)) / axis_norm
-                dq_ddr = compose(dq_dp, in_plane) / stretch
+                dq_ddr = compose(dq_dp, in_plane) / divisor
                 terms.force_dr = compose(df_dq, dq_ddr)
                 dp_dn = -(outer(n, t) + np.einsum("ceq,ceq->eq", n, t) * eye)
                 force_r = force_r + compose(df_dq, compose(dq_dp, compose(dp_dn, dn)))
@@ -115,13 +115,13 @@ def _project(seabed, points, derivatives):
 
 def _axis(dr, n):
     """In-plane unit axial direction q (3, nel, nq), |p| with p = (I - n n^T) t (nel, nq),
-    the unit tangent t (3, nel, nq) and the stretch |r'| (nel, nq), for dr/ds and the normal n."""
-    stretch = np.sqrt(np.einsum("ceq,ceq->eq", dr, dr))
-    t = dr / stretch
+    the unit tangent t (3, nel, nq) and |r'| as a divisor (nel, nq) (``unit_tangent``), for dr/ds and
+    the normal n."""
+    t, _, divisor = unit_tangent(dr)
     p = t - np.einsum("ceq,ceq->eq", t, n) * n
     size = np.sqrt(np.einsum("ceq,ceq->eq", p, p))
     degenerate = size < DEGENERATE_AXIS
     # a zero q makes the law all transverse and, with an infinite |p|, zeroes dq
     safe = np.where(degenerate, np.inf, size)
-    return p / safe, safe, t, stretch
+    return p / safe, safe, t, divisor
 

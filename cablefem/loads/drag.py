@@ -33,7 +33,7 @@ still water surface (a fairlead at z = 0 has a vanishing length in air).
 import numpy as np
 
 from ..errors import InputError
-from . import Terms, compose, identity_like, outer
+from . import Terms, compose, identity_like, outer, unit_tangent
 
 
 def tangential_drag_from_moordyn(cd_axial):
@@ -66,8 +66,7 @@ class Drag:
         if state.v is None:
             return Terms()
         dr = state.dr
-        stretch = np.sqrt(np.einsum("ceq,ceq->eq", dr, dr))
-        t = dr / stretch
+        t, stretch, _ = unit_tangent(dr)
         u = self.current - state.v
         along = np.einsum("ceq,ceq->eq", u, t)
         u_normal = u - along * t

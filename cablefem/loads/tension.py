@@ -15,7 +15,7 @@ e); statics starts with it, see ``cablefem.statics``.
 
 import numpy as np
 
-from . import Terms, identity_like, outer
+from . import Terms, identity_like, outer, unit_tangent
 
 #: tangent stiffness of a slack element, as a fraction of EA
 SLACK_STIFFNESS = 1e-6
@@ -29,10 +29,11 @@ def strain(dr):
 
 def axial_tension(dr, EA, beta=None, dv=None):
     """Tension T [N] (nel, nq) from dr/ds and, with damping, dv/ds (3, nel, nq); EA, beta (nel, 1)."""
-    e, stretch = strain(dr)
+    _, stretch, divisor = unit_tangent(dr)
+    e = stretch - 1.0
     T = EA * e
     if beta is not None and dv is not None:
-        T = T + EA * beta * np.einsum("ceq,ceq->eq", dr, dv) / stretch
+        T = T + EA * beta * np.einsum("ceq,ceq->eq", dr, dv) / divisor
     return np.where(e > 0.0, np.maximum(T, 0.0), 0.0)
 
 
@@ -53,8 +54,8 @@ class Tension:
 
     def evaluate(self, state, jacobian=True):
         dr, dv = state.dr, state.dv
-        e, stretch = strain(dr)
-        t = dr / stretch
+        t, stretch, divisor = unit_tangent(dr)
+        e = stretch - 1.0
         damped = self.beta is not None and dv is not None
         rate = np.einsum("ceq,ceq->eq", t, dv) if damped else 0.0  # de/dt
         T = self.EA * (e + (self.beta * rate if damped else 0.0))
@@ -66,11 +67,11 @@ class Tension:
         on = active.astype(float)
         dT_ddr = self.EA * on * t
         if damped:
-            dT_ddr = dT_ddr + self.EA * self.beta * on * (dv - rate * t) / stretch
+            dT_ddr = dT_ddr + self.EA * self.beta * on * (dv - rate * t) / divisor
             terms.flux_dv = outer(t, self.EA * self.beta * on * t)
         tt = outer(t, t)
         eye = identity_like(t)
-        terms.flux_dr = outer(t, dT_ddr) + (T / stretch) * (eye - tt) \
+        terms.flux_dr = outer(t, dT_ddr) + (T / divisor) * (eye - tt) \
             + (SLACK_STIFFNESS * self.EA * (1.0 - on)) * eye
         return terms
 
