@@ -1,44 +1,53 @@
-"""Implicit time integrators with Newton per step: BDF2 and generalised-alpha.
+"""Implicit time integrators with Newton per step: BDF2 and generalised-alpha, and their registry.
 
 The semi-discrete equation of motion (desire2023 Eq. 1 after the FEM in s) is
 
     M A + G(X, V, A, t) = 0,
 
-with M the consistent (or lumped) mass and G the loads (tension with
-internal damping, weight, drag, added mass, seabed contact and friction).
-The anchor row is fixed and the fairlead row follows its prescribed motion.
-Each integrator writes X_{n+1} as the unknown, V and A as affine functions
-of it, and solves the step's residual by Newton with the analytic tangent
+with M the consistent (or lumped) mass and G the loads. The anchor row is fixed and the fairlead
+row follows its prescribed motion. An integrator (a scheme) writes X_{n+1} as the unknown and the
+point where the loads are evaluated, (X, V, A), as affine functions of it (``begin``, ``point``),
+so that the Newton tangent is
 
-    K = a_x M + dG/dX + v_x dG/dV + a_x dG/dA,   v_x = dV/dX, a_x = dA/dX.
+    K = g_x (a_x M + dG/dX + v_x dG/dV + a_x dG/dA),   g_x = dX/dX_{n+1}, v_x, a_x the factors.
 
-Like scipy.integrate's solvers, an integrator has a ``step()`` and counters
-(``nfev`` residual evaluations, ``njev`` tangents, ``nlu`` factorisations,
-``newton_iterations``, ``steps``, ``rejected``). A step whose Newton does not
-converge is retried with half the step; the caller sees a
-``ConvergenceError`` only when the step falls below ``min_dt``.
+Everything else is shared: the Newton policy (iterations, line search, branch corrections,
+retries, halving, growth) is ``cablefem.policy``, run here on Python ops (``cablefem.python_ops``)
+and, for BDF2 on the compiled kernel, in numba (``cablefem.march``). Like scipy.integrate's
+solvers, an integrator has a ``step()`` and counters (``nfev`` residual evaluations, ``njev``
+tangents, ``nlu`` factorisations, ``newton_iterations``, ``steps``, ``rejected``). A step that
+fails at ``min_dt`` raises a ``ConvergenceError`` with its residual. ``INTEGRATORS`` is the one
+registry; ``integrator_options`` turns a scene's [solver] into their arguments.
 """
 
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .branches import hold_branches
+from . import policy, python_ops
 from .errors import ConvergenceError
-from .march import DONE, FAILED, FRACTIONS, PROJECTION, Marcher
+
+#: the policy on Python ops, for every integrator
+PYTHON = policy.bind(python_ops)
+
+
+def _counter(index):
+    """A property reading and writing ``counters[index]`` (``policy.COUNTERS``)."""
+    return property(lambda self: int(self.counters[index]),
+                    lambda self, value: self.counters.__setitem__(index, value))
 
 
 class Integrator:
-    """Common machinery: state, boundary rows, mass, Newton, retries, counters.
+    """Common machinery: state, boundary rows, mass, counters and the policy's Python ops.
 
-    system: a ``LineSystem``; X0, V0: (N, 3) initial state [m, m/s]; ``boundary(t)`` gives
-    the fairlead's position, velocity and acceleration (3,) at time t; dt [s]; tolerance:
-    relative residual or relative increment, as in statics. ``compiled`` evaluates steps with
-    ``cablefem.fused`` when the system's loads allow it (the same equations, compiled);
-    ``newton`` is "full", "modified" (LU factors kept across iterations and steps) or "auto":
-    modified on the numpy path; with the compiled kernel, modified Newton step by step until
-    a step's kept factors have to be rebuilt (they contract slower than ``CONTRACTION``) or the
-    step fails, then full Newton for the next ``AUTO_FULL_STEPS`` attempts.
+    system: a ``LineSystem``; X0, V0: (N, 3) initial state [m, m/s]; ``boundary(t)`` gives the
+    fairlead's position, velocity and acceleration (3,) at time t; dt [s]; tolerance: relative
+    residual or relative increment, as in statics. ``compiled`` evaluates with ``cablefem.fused``
+    (every load in the catalog has a compiled face); ``newton`` is "full", "modified" (LU factors
+    kept across iterations and steps) or "auto": modified on the numpy path; with the compiled
+    kernel modified Newton attempt by attempt until a step's kept factors have to be rebuilt (they
+    contract slower than ``CONTRACTION``) or the step fails, then full Newton for the next
+    ``AUTO_FULL_STEPS`` attempts. Subclasses give the scheme: ``begin``, ``point``, ``accept``.
     """
 
     name = "integrator"
@@ -58,10 +67,9 @@ class Integrator:
     #: smallest fraction of a Newton step the residual line search tries
     MIN_DAMPING = 1.0 / 16.0
     #: times a rejected full Newton step is solved again from its base with the friction,
-    #: contact and tension branches its trial point reached (``_newton``; 0: never). Snap loads
-    #: on the flume chain, P1 x 14 at dt 0.16 s: 13 failed attempts and 1306 evaluations
-    #: without, none and 882 with (verification/work_precision/README.md); an attempt that
-    #: fails with corrections is tried once more without
+    #: contact and tension branches its trial point reached (``policy.newton``; 0: never). Snap
+    #: loads on the flume chain, P1 x 14 at dt 0.16 s: 13 failed attempts and 1306 evaluations
+    #: without, none and 882 with (verification/work_precision/README.md)
     MAX_CORRECTIONS = 2
     #: largest ratio of a step to the one before: variable-step BDF2 is zero-stable for ratios
     #: below 1 + sqrt(2) (Grigorieff 1983); halved steps grow back by doubling
@@ -79,26 +87,20 @@ class Integrator:
         self.X = np.array(X0, dtype=float)
         self.V = np.zeros_like(self.X) if V0 is None else np.array(V0, dtype=float)
         self.dt = float(dt)
-        self.nominal_dt = float(dt)
         self.min_dt = float(min_dt) if min_dt else self.dt / 1024.0
         self.tolerance = tolerance
         self.max_iterations = max_iterations
-        self.M = fem.vector_mass(system.props["mass"], free_only=False)
-        if lumped:
-            if fem.order != 1:
-                raise ValueError("a lumped mass needs order 1 elements")
-            self.M = sp.diags(np.asarray(self.M.sum(axis=1)).ravel()).tocsr()
+        self.M = mass_matrix(system, lumped)
         free = fem.free_vector_dofs
         self.M_free = self.M[free][:, free].tocsr()
         self.length = system.line.unstretched_length
         self.scale = float(np.linalg.norm(system.weight_vector()[fem.free_dofs])) or 1.0
-        self.nfev = self.njev = self.nlu = 0
+        self.counters = np.zeros(len(policy.COUNTERS), dtype=np.int64)
         self.last_h = None  # the last accepted step [s]
-        self.newton_iterations = self.steps = self.rejected = self.corrections = 0
         self.last_residual = float("nan")  # the final relative residual of the last failed attempt
         self.residual_rows = None  # M A + G at the current state, (N, 3); compiled steps may fill only
         # the anchor and fairlead rows (the reactions), leaving the others zero
-        self._lu, self._lu_factors = None, None
+        self.lu, self.lu_factors = None, None
         self.fused = None
         if compiled and not lumped:
             from .fused import FusedEvaluator
@@ -108,8 +110,8 @@ class Integrator:
         # Newton (fewer iterations) wins; on the numpy path kept factors save more than they cost
         if newton not in ("auto", "full", "modified"):
             raise ValueError(f"newton must be auto, full or modified, got {newton!r}")
-        self.reuse_jacobian = newton == "modified" or (newton == "auto" and self.fused is None)
-        self.switching = newton == "auto" and self.fused is not None
+        self.newton_mode = {"full": policy.FULL, "modified": policy.MODIFIED}.get(
+            newton, policy.SWITCHING if self.fused is not None else policy.MODIFIED)
         self.full_steps_left = 0  # "auto": attempts still to run in full Newton
         # positions converge when the force their error makes, EA / h * dx, is below the
         # tolerance times the weight of an element: dx <= tol w h^2 / EA (floored at round-off)
@@ -119,6 +121,20 @@ class Integrator:
         self.increment_tolerance = max(tolerance * weight * h * h / float(np.max(system.props["EA"])),
                                        1e3 * np.finfo(float).eps * extent)
         self.A = self.initial_acceleration()
+
+    # ------------------------------------------------------------------ counters
+    steps, newton_iterations, nfev, njev, nlu, rejected, corrections = map(_counter, range(len(policy.COUNTERS)))
+
+    @property
+    def settings(self):
+        """The policy's ``Settings`` of the Python ops, from this integrator's attributes."""
+        return self.make_settings(0)
+
+    def make_settings(self, parts):
+        """The policy's ``Settings`` from this integrator's attributes (``parts``: see ``policy``)."""
+        return policy.Settings(self.tolerance, self.increment_tolerance, self.max_iterations, self.MAX_GROWTH,
+                               self.newton_mode, self.CONTRACTION, self.MIN_DAMPING, self.min_dt,
+                               float(self.AUTO_FULL_STEPS), self.STRETCH, self.MAX_CORRECTIONS, parts)
 
     # ------------------------------------------------------------ helpers
     def set_boundary(self, X, V, A, t):
@@ -155,166 +171,40 @@ class Integrator:
         if np.linalg.norm(rhs) <= 1e-12 * self.scale:
             return A
         # d(G + M A)/dA restricted to the free rows: the acceleration blocks only
-        rate_only = system.evaluate(system.state(X, V, A, self.t), jacobian=True,
-                                    velocity_factor=0.0, acceleration_factor=1.0)[1]
         static = system.evaluate(system.state(X, V, A, self.t), jacobian=True)[1]
-        K = system.matrix(rate_only) - system.matrix(static) + self.M_free
+        K = system.matrix(blocks) - system.matrix(static) + self.M_free
         A[fem.free_dofs] = spla.spsolve(K.tocsc(), rhs).reshape(-1, 3)
         return A
 
-    def newton(self, X1, point, factors, t_eval):
-        """Newton on one attempted step (``_newton``), full or modified as ``newton`` says;
-        "auto" with the compiled kernel chooses here, attempt by attempt (see the class)."""
-        reuse = self.reuse_jacobian or (self.switching and self.full_steps_left <= 0)
-        corrected = self.corrections
-        X, rows, ok, trouble = self._newton(X1, point, factors, t_eval, reuse, self.MAX_CORRECTIONS)
-        if reuse and not ok:  # once more from the start: modified with a fresh tangent, or (auto) full
-            trouble = True
-            self._lu = None
-            X, rows, ok, _ = self._newton(X1, point, factors, t_eval, self.reuse_jacobian, self.MAX_CORRECTIONS)
-        if not ok and self.corrections > corrected:  # corrected and failed: once more without
-            self._lu = None
-            X, rows, ok, _ = self._newton(X1, point, factors, t_eval, self.reuse_jacobian, 0)
-        if self.switching:
-            if reuse and trouble:
-                self.full_steps_left = self.AUTO_FULL_STEPS
-            elif not reuse:
-                self.full_steps_left -= 1
-        return X, rows, ok
-
-    def _newton(self, X1, point, factors, t_eval, reuse, max_corrections):
-        """Solve the step residual M A + G = 0 on the free rows for the new positions X1 (N, 3).
-
-        point(X1) -> (X, V, A) where the loads are evaluated; factors = (v_x, a_x, g_x) with
-        d(X, V, A)/dX1 = g_x (1, v_x, a_x). Returns (X1, rows, ok, refreshed), rows = M A + G
-        (N, 3), refreshed: kept factors were rebuilt for slow contraction.
-
-        With ``reuse`` the LU factors of the tangent are kept across iterations and
-        steps (modified Newton) and rebuilt when the step size changes, when the iteration
-        contracts slower than ``CONTRACTION`` or when it fails; an iteration converges when
-        the residual is below the tolerance or when the increment, extrapolated by the
-        observed contraction (rho / (1 - rho), Hairer & Wanner IV.8), is below the increment
-        tolerance. A fresh tangent gives Newton's quadratic convergence. When the last residual
-        was below sqrt(tolerance), so that this one should converge, the residual is evaluated
-        alone and the tangent only if it has not (the tangent costs about twice the residual in
-        the compiled kernel).
-
-        A Newton step that does not reduce the residual norm (Armijo's test, Kelley 2003 Sec.
-        8.1) is halved, down to ``MIN_DAMPING``: seabed friction and contact switch between
-        regimes, and undamped Newton can cycle between two states (measured on the snap-load
-        flume case: residuals alternating 0.43, 0.39, 0.43, ... until the step was halved).
-
-        Most of those rejections are a branch switch that the tangent at the base cannot see:
-        seabed friction is a ramp of slope mu N / v_c up to the slip speed v_c and constant
-        beyond (housner2022 Eq. 5-13), so at a sliding point Newton sees no friction stiffness
-        along the slip and overshoots through the sticking branch; a slack element has no axial
-        stiffness and Newton overshoots it into a large tension; a point just above a stiff
-        seabed has no contact stiffness and Newton drives it deep into the seabed. Before
-        halving a rejected full step, the step is solved again from its base (up to
-        ``max_corrections`` times) with the points it took from sliding into the ramp or
-        against their slip held on the ramp, those it put on the seabed or lifted off held on
-        the trial's contact branch (spring and damper) and those it pulled taut held on the
-        taut branch (value and slope of that branch at the base: the semismooth Newton step of
-        the branch the trial revealed, ``cablefem.branches``), and the new trial point faces the same
-        Armijo test against the true residual; if no correction passes, the line search halves
-        Newton's own step. The solution is that of the true residual; only the path to it
-        changes. ``newton`` tries an attempt that failed with corrections once more without.
-        """
-        free = self.fem.free_dofs
-        v_x, a_x, _ = factors
-        rows = None
-        fresh = not reuse or self._lu is None or self._lu_factors != factors
-        previous, refreshed = None, False
-        base, damping = None, 1.0  # (X1, norm, dX) of the last Newton step taken, its damping
-        damped = False  # the point that step started from was reached by a damped step
-        branches, corrected = None, 0  # the base's branches (slip, taut, contact); its step's corrections
-        original = None  # Newton's own step from the base, when corrected
-        for _ in range(self.max_iterations):
-            X, V, A = point(X1)
-            # the tangent comes with the residual unless Newton's quadratic convergence from the
-            # last residual promises that this one converges, or the step starts from a damped
-            # point (regimes switching: its full step is mostly rejected); it is evaluated then
-            # if the point is taken and has not converged
-            with_tangent = fresh and damping == 1.0 and not damped and (
-                base is None or base[1] > np.sqrt(self.tolerance))
-            rows, tangent = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, with_tangent)
-            norm = np.linalg.norm(rows[free]) / self.scale
-            if norm <= self.tolerance and previous is not None:
-                return X1, rows, True, refreshed
-            if base is not None and damping > self.MIN_DAMPING and not norm <= (1 - 1e-4 * damping) * base[1]:
-                if damping == 1.0 and corrected < max_corrections and branches is not None and fresh \
-                        and hold_branches(self.fused, branches, corrected > 0):  # Newton again from the base on the new branches
-                    corrected += 1
-                    self.corrections += 1
-                    X, V, A = point(base[0])
-                    model, tangent = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, True, stick=True)
-                    dX = self._increment(tangent, model, factors, True)
-                    if dX is None:
-                        break
-                    original = original if corrected > 1 else base[2]
-                    base = (base[0], base[1], dX)
-                    X1 = base[0].copy()
-                    X1[free] += dX
-                    self.newton_iterations += 1
-                    previous = float(np.max(np.abs(dX)))
-                    continue
-                if damping == 1.0 and corrected:  # no correction passed: the line search halves Newton's step
-                    base = (base[0], base[1], original)
-                    previous = float(np.max(np.abs(original)))
-                damping *= 0.5
-                X1 = base[0].copy()
-                X1[free] += damping * base[2]
-                continue
-            if not np.isfinite(norm):
-                break
-            if fresh and not with_tangent:
-                rows, tangent = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, True)
-            dX = self._increment(tangent, rows, factors, fresh)
-            if dX is None:
-                break
-            base, damping, damped = (X1, norm, dX), 1.0, damping < 1.0
-            if self.fused is not None:
-                branches, corrected = (self.fused.slip.copy(), self.fused.taut.copy(), self.fused.contact.copy()), 0
-            X1 = X1.copy()
-            X1[free] += dX
-            self.newton_iterations += 1
-            size = float(np.max(np.abs(dX)))
-            rho = size / previous if previous else None
-            if (fresh and size <= self.increment_tolerance) or (
-                    rho is not None and rho < 1 and size * rho / (1 - rho) <= self.increment_tolerance):
-                X, V, A = point(X1)
-                rows, _ = self.rows_and_tangent(X, V, A, t_eval, v_x, a_x, False)
-                return X1, rows, True, refreshed
-            fresh = not reuse or (rho is not None and rho > self.CONTRACTION)
-            refreshed = refreshed or (reuse and fresh)
-            previous = size
-        self._lu = None
-        self.last_residual = norm
-        return X1, rows, False, refreshed
-
-    def _increment(self, tangent, rows, factors, refactor):
-        """The Newton increment (N_free, 3) for residual ``rows``, with ``refactor`` from fresh LU
-        factors of ``tangent`` (counted, kept in ``self._lu``), else from the kept ones; None
-        if the tangent is singular or the increment not finite."""
-        if refactor:
-            _, a_x, g_x = factors
-            self.njev += 1
-            self._lu = self.factorize(tangent, g_x, a_x)
-            if self._lu is None:
-                return None
-            self.nlu += 1
-            self._lu_factors = factors
-        dX = self.solve(self._lu, rows)
-        return dX if np.all(np.isfinite(dX)) else None
-
+    # ------------------------------------------------------------ the policy's Python ops
     def rows_and_tangent(self, X, V, A, t, v_x, a_x, jacobian, stick=False):
         """Rows M A + G (N, 3) at the evaluation point and, with ``jacobian``, the tangent of the
-        loads and mass in the representation ``factorize`` takes (``stick``: see ``_newton``)."""
+        loads and mass in the representation ``increment`` factors (``stick``: held branches)."""
         if self.fused is not None:
             self.nfev += 1
             return self.fused.evaluate(X, V, A, v_x, a_x, jacobian, stick)
         residual, blocks = self.evaluate(X, V, A, t, v_x, a_x, jacobian)
         return residual + self.inertia(A), blocks
+
+    def evaluate(self, X, V, A, t, v_x, a_x, jacobian=True):
+        """Load residual rows and tangent blocks (the numpy loads) at an evaluation point."""
+        self.nfev += 1
+        return self.system.evaluate(self.system.state(X, V, A, t), jacobian, v_x, a_x)
+
+    def increment(self, tangent, rows, refactor):
+        """The Newton increment (N_free, 3) for residual ``rows``, with ``refactor`` from fresh LU
+        factors of ``tangent`` (counted, kept), else from the kept ones; None if the tangent is
+        singular or the increment not finite."""
+        if refactor:
+            _, a_x, g_x = self.factors
+            self.njev += 1
+            self.lu = self.factorize(tangent, g_x, a_x)
+            if self.lu is None:
+                return None
+            self.nlu += 1
+            self.lu_factors = self.factors
+        dX = self.solve(self.lu, rows)
+        return dX if np.all(np.isfinite(dX)) else None
 
     def factorize(self, tangent, g_x, a_x):
         """LU factors of g_x (K + a_x M), or None when singular."""
@@ -331,37 +221,27 @@ class Integrator:
             return self.fused.solve(factors, rows)
         return factors.solve(-rows[self.fem.free_dofs].ravel()).reshape(-1, 3)
 
-    def evaluate(self, X, V, A, t, v_x, a_x, jacobian=True):
-        """Load residual rows and tangent blocks at the step's evaluation point."""
-        self.nfev += 1
-        return self.system.evaluate(self.system.state(X, V, A, t), jacobian, v_x, a_x)
+    def predict(self, h):
+        """Taylor predictor of the positions at t + h, the fairlead at ``self.target`` and the anchor
+        in place (``self.guess``)."""
+        guess = self.X + h * self.V + 0.5 * h * h * self.A
+        guess[self.fem.fairlead_dof] = self.target
+        guess[self.fem.anchor_dof] = self.system.line.anchor
+        self.guess = guess
 
     # --------------------------------------------------------------- step
+    def attempt(self, h):
+        """Try one step of size h (``policy.attempt``); update the state and return True on success."""
+        return PYTHON["attempt"](self, h) == policy.CONVERGED
+
     def step(self, dt=None, first=None):
-        """Advance exactly by dt (default: the current step) [s]. A step whose Newton fails is
-        halved, down to ``min_dt``; no step is longer than ``MAX_GROWTH`` times the step before,
-        so after a failure (or a short step that landed on an output time) the steps grow back
-        to dt by doubling. ``first``: the first attempt's size, when a caller has seen a longer
-        one fail. Returns dt."""
+        """Advance exactly by dt (default: the current step) [s], as ``policy.advance`` does: a
+        failed attempt is halved (to ``min_dt``), the steps grow back by at most ``MAX_GROWTH``;
+        ``first``: the first attempt's size, when a caller has seen a longer one fail. Returns dt."""
         target = float(dt or self.dt)
-        done, h = 0.0, float(first or target)
-        while target - done > 1e-9 * target:
-            remaining = target - done
-            h = min(h, remaining)
-            if self.last_h is not None:
-                h = min(h, self.MAX_GROWTH * self.last_h)
-            if remaining - h <= self.STRETCH * h:  # land on the end, never leave a sliver of it
-                h = remaining
-            if not self.attempt(h):
-                self.rejected += 1
-                if h / 2 < self.min_dt:
-                    raise self.too_small(h)
-                h /= 2
-                continue
-            self.steps += 1
-            self.last_h = h
-            done += h
-            h = target
+        status = PYTHON["advance"](self, 0, target, float(first or 0.0))
+        if status == policy.FAILED:
+            raise self.too_small(self.stopped)
         return target
 
     def too_small(self, h):
@@ -394,15 +274,25 @@ class Integrator:
         return np.array([self.boundary(t)[0] for t in times], dtype=float).reshape(-1, 3)
 
     def snapshot(self):
-        """The state needed to undo steps (see ``restore``)."""
-        return (self.t, self.X, self.V, self.A, self.residual_rows, self.last_h,
-                getattr(self, "previous", None))
+        """The state needed to undo steps (see ``restore``): the state, the scheme's memory and the
+        committed history of the points."""
+        history = None if self.fused is None else (self.fused.points.full_old.copy(),
+                                                   self.fused.points.reduced_old.copy())
+        return (self.t, self.X, self.V, self.A, self.residual_rows, self.last_h, self.memory(), history)
 
     def restore(self, snapshot):
         """Go back to a ``snapshot``."""
-        self.t, self.X, self.V, self.A, self.residual_rows, self.last_h, previous = snapshot
-        if hasattr(self, "previous"):
-            self.previous = previous
+        self.t, self.X, self.V, self.A, self.residual_rows, self.last_h, memory, history = snapshot
+        self.set_memory(memory)
+        if history is not None:
+            self.fused.points.full_old[...], self.fused.points.reduced_old[...] = history
+
+    def memory(self):
+        """What the scheme keeps of earlier steps (``snapshot``)."""
+        return None
+
+    def set_memory(self, memory):
+        """Put back what ``memory`` returned."""
 
     def tension_error(self, X_low):
         """Estimated local error of the last step as a fraction of the line's largest tension:
@@ -416,163 +306,65 @@ class Integrator:
         tension = EA * np.maximum(np.linalg.norm(dr, axis=0) - 1.0, 0.0)
         return float(error.max() / max(tension.max(), 1e-12 * EA.max()))
 
-    def attempt(self, h):
-        """Try one step of size h; update the state and return True on success."""
-        raise NotImplementedError
-
-    def predict(self, h, t1):
-        """Taylor predictor of the positions at t1 = t + h with the boundary rows in place."""
-        guess = self.X + h * self.V + 0.5 * h * h * self.A
-        guess[self.fem.fairlead_dof] = self.boundary(t1)[0]
-        guess[self.fem.anchor_dof] = self.system.line.anchor
-        return guess
-
     def reactions(self):
         """Forces (3,) the line exerts on its fairlead and anchor at the current state [N]."""
         rows = self.residual_rows
         if rows is None:
-            residual, _ = self.evaluate(self.X, self.V, self.A, self.t, 0.0, 0.0, jacobian=False)
+            residual, _ = self.system.evaluate(self.system.state(self.X, self.V, self.A, self.t), jacobian=False)
             rows = residual + self.inertia(self.A)
         return -rows[self.fem.fairlead_dof], -rows[self.fem.anchor_dof]
 
     def statistics(self):
         """Counters as a dict, for summary.json."""
-        return {"integrator": self.name, "steps": self.steps, "rejected": self.rejected,
-                "newton_iterations": self.newton_iterations, "nfev": self.nfev,
-                "njev": self.njev, "nlu": self.nlu, "corrections": self.corrections}
+        return {"integrator": self.name, **{name: int(value) for name, value in zip(policy.COUNTERS, self.counters)}}
 
 
-class BDF2(Integrator):
-    """Variable-step BDF2 on X and V (desire2023 Sec. 2.1.2), started by one backward-Euler step.
+def mass_matrix(system, lumped=False):
+    """The line's mass matrix (N 3, N 3), CSR: consistent, assembled by scikit-fem's ``forms.mass``,
+    or lumped (row sums; order 1 only)."""
+    from . import forms
 
-    With the fused kernel on a plane, a depth grid or a triangulated surface, steps run
-    compiled, Newton iterations and seabed projections included (``cablefem.march``): ``march``
-    takes runs of steps in one call and ``attempt`` one step; the numbers are those of the
-    Python path to round-off."""
-
-    name = "bdf2"
-
-    def __init__(self, *args, **kwargs):
-        super().__init__(*args, **kwargs)
-        self.previous = None  # (h, X, V) of the step before
-        self.marcher = Marcher.for_integrator(self)
-
-    def march(self, times):
-        if self.marcher is None:
-            return super().march(times)
-        times = np.asarray(times, dtype=float)
-        fairlead = self.fairlead_positions(times)
-        # the fairlead where the compiled loop may split each step (halved on failure)
-        starts = np.append(self.t, times[:-1])
-        split = np.arange(1, FRACTIONS) / FRACTIONS
-        fractions = self.fairlead_positions((starts[:, None] + split * (times - starts)[:, None]).ravel())
-        fractions = fractions.reshape(len(times), FRACTIONS - 1, 3)
-        forces = np.empty((len(times), 2, 3))
-        k = 0
-        while k < len(times):
-            status, done, forces[k:], stopped = self.marcher.run(self, times[k:], fairlead[k:], fractions[k:])
-            k += done
-            if status == DONE:
-                break
-            # a halving would go deeper than the loop's split points (``step`` halves on), an
-            # attempt would not end on one of them (a step growing back after a short step to
-            # another output time) or the walk lost a point (``attempt`` projects it in
-            # Python): this step goes on through ``step``, the rest resume here
-            first = {FAILED: 0.5 * stopped, PROJECTION: stopped}.get(status)
-            try:
-                if first is not None and first < self.min_dt:
-                    raise self.too_small(2 * first)
-                self.step(times[k] - self.t, first=first)
-            except ConvergenceError as error:
-                error.forces = forces[:k]
-                raise
-            forces[k] = self.reactions()
-            k += 1
-        return forces
-
-    def error_estimate(self):
-        """Relative tension error of the last step by Milne's device: the Taylor predictor P
-        and BDF2 have local errors h^3 X^(3) / 6 and -2 h^3 X^(3) / 9, so LTE = 4/7 (X - P)."""
-        return self.tension_error(self.X - 4.0 / 7.0 * (self.X - self.prediction))
-
-    def coefficients(self, h):
-        """(c0, c1, c2) with y' ~ c0 y_{n+1} + c1 y_n + c2 y_{n-1}; backward Euler at the start."""
-        if self.previous is None:
-            return 1.0 / h, -1.0 / h, 0.0
-        w = h / self.previous[0]
-        return (1 + 2 * w) / ((1 + w) * h), -(1 + w) / h, w * w / ((1 + w) * h)
-
-    def attempt(self, h):
-        if self.marcher is not None:
-            t1 = self.t + h
-            status, done, _, _ = self.marcher.run(self, [t1], self.boundary(t1)[0][None])
-            if status != PROJECTION:
-                return done == 1
-            # the compiled walk lost a point: this attempt projects in Python (with its search)
-        c0, c1, c2 = self.coefficients(h)
-        t1 = self.t + h
-        Xp, Vp = (self.X, self.V) if self.previous is None else self.previous[1:]
-        x_hist = c1 * self.X + c2 * Xp
-        v_hist = c1 * self.V + c2 * Vp
-
-        def point(X):
-            V = c0 * X + x_hist
-            return X, V, c0 * V + v_hist
-
-        prediction = self.predict(h, t1)
-        X, rows, ok = self.newton(prediction, point, (c0, c0 * c0, 1.0), t1)
-        if not ok:
-            return False
-        self.prediction = prediction
-        self.previous = (h, self.X, self.V)
-        _, self.V, self.A = point(X)
-        self.X, self.t, self.residual_rows = X, t1, rows
-        return True
+    fem = system.fem
+    m = system.props["mass"][:, None] * np.ones_like(fem.full.dx)
+    M = forms.mass.assemble(fem.basis, m=m).tocsr()
+    if lumped:
+        if fem.order != 1:
+            raise ValueError("a lumped mass needs order 1 elements")
+        M = sp.diags(np.asarray(M.sum(axis=1)).ravel()).tocsr()
+    return M
 
 
-class GeneralizedAlpha(Integrator):
-    """Generalised-alpha (Chung & Hulbert 1993) with spectral radius ``rho_inf`` at infinite
-    frequency: second order, unconditionally stable for linear problems, tunable
-    high-frequency damping.
+class _Registry(dict):
+    """Integrator names -> classes, each imported when first asked for (the compiled steps of BDF2
+    load numba's kernels: a scene is read, and ``cablefem static`` runs, without them)."""
 
-    Unconditional stability does not carry over to the nonlinear, tension-only axial
-    stiffness of a line (Kuhl & Crisfield 1999; Erlicher et al. 2002): on a stiff chain
-    (EA 5e11 N) pulled taut with omega dt ~ 1e2, rho_inf <= 0.5 stays bounded and rho_inf >=
-    0.6 pumps energy until the tension reaches 1e11 N (verification/stability, case 7b).
-    Hence the default 0.5; BDF2 has no such limit."""
+    def __getitem__(self, name):
+        entry = super().__getitem__(name)
+        if isinstance(entry, str):
+            from importlib import import_module
 
-    name = "generalized-alpha"
+            module, _, attribute = entry.rpartition(".")
+            entry = getattr(import_module(module), attribute)
+            super().__setitem__(name, entry)
+        return entry
 
-    def __init__(self, *args, rho_inf=0.5, **kwargs):
-        self.rho_inf = float(rho_inf)
-        r = self.rho_inf
-        self.alpha_m = (2 * r - 1) / (r + 1)
-        self.alpha_f = r / (r + 1)
-        self.gamma = 0.5 - self.alpha_m + self.alpha_f
-        self.beta = 0.25 * (1 - self.alpha_m + self.alpha_f) ** 2
-        super().__init__(*args, **kwargs)
+    def values(self):
+        return [self[name] for name in self]
 
-    def attempt(self, h):
-        am, af, g, b = self.alpha_m, self.alpha_f, self.gamma, self.beta
-        t1 = self.t + h
-        X0, V0, A0 = self.X, self.V, self.A
-
-        def newmark(X1):
-            A1 = (X1 - X0 - h * V0) / (b * h * h) - (0.5 / b - 1.0) * A0
-            return V0 + h * ((1 - g) * A0 + g * A1), A1
-
-        def point(X1):  # loads at t_{n+1-af}, inertia at n+1-am
-            V1, A1 = newmark(X1)
-            return (1 - af) * X1 + af * X0, (1 - af) * V1 + af * V0, (1 - am) * A1 + am * A0
-
-        factors = (g / (b * h), (1 - am) / ((1 - af) * b * h * h), 1 - af)
-        X1, _, ok = self.newton(self.predict(h, t1), point, factors, t1 - af * h)
-        if not ok:
-            return False
-        self.V, self.A = newmark(X1)
-        self.X, self.t = X1, t1
-        self.residual_rows = None  # the balance holds at n+1-af; reactions re-evaluate at n+1
-        return True
+    def items(self):
+        return [(name, self[name]) for name in self]
 
 
-INTEGRATORS = {"bdf2": BDF2, "generalized-alpha": GeneralizedAlpha}
+#: the one registry of integrators: [solver] integrator names their key (docs/architecture.md,
+#: "Adding an integrator"); ``cablefem.schemes.integrator_options`` turns a scene's [solver] into
+#: their arguments
+INTEGRATORS = _Registry({"bdf2": "cablefem.schemes.BDF2", "generalized-alpha": "cablefem.schemes.GeneralizedAlpha"})
+
+
+def __getattr__(name):
+    """The schemes by name (``from cablefem.dynamics import BDF2``), imported on first use."""
+    if name in ("BDF2", "GeneralizedAlpha", "integrator_options"):
+        from . import schemes
+
+        return getattr(schemes, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,55 +1,66 @@
-"""BDF2 steps with their Newton iterations in one compiled loop (numba, LAPACK's banded LU).
+"""BDF2 steps on the compiled kernel, many in one numba call: the policy's compiled ops.
 
-``cablefem.fused`` compiles the residual and the banded tangent; a step still
-spent ~90 us per Newton iteration in Python around them (the state update,
-norms, the LU and solve calls through scipy, the boundary motion), more than
-the compiled work itself on the small meshes that the coarse accuracy levels
-use (verification/work_precision/README.md). This module runs whole steps,
-and runs of steps, without returning to Python: the same variable-step BDF2
-(``cablefem.dynamics.BDF2``, desire2023 Sec. 2.1.2: backward Euler to start,
-then y' ~ c0 y_{n+1} + c1 y_n + c2 y_{n-1} on X and V) and the same Newton
-(full or modified, with the residual line search) with the same convergence
-tests as ``Integrator.newton``, line for line, and a step that fails halved
-once in the loop as ``Integrator.step`` halves it (to its midpoint, then on),
-so both paths give the same numbers to round-off (tests/test_march.py).
-Before the halving moved into the loop, every failed step returned to Python
-for its halves: ~30 % of a coarse snap-load run's time (P2 x 10, dt 0.16 s).
+``cablefem.policy`` writes the Newton policy once (iterations, line search, branch corrections,
+retries, halving and growth); this module binds it to compiled ops and compiles it (``STEPS``).
+A step spent ~90 us per Newton iteration in Python around the compiled kernel (state updates,
+norms, LU calls through scipy, the boundary motion), more than the kernel itself on the small
+meshes of the coarse accuracy levels (verification/work_precision/README.md); here runs of
+steps go without returning to Python, and the numbers are those of the Python ops to round-off
+(``tests/test_march.py``).
 
-The banded LU is ``cablefem.banded`` (LAPACK's dgbtf2/dgbtrs written out for
-numba).
+The scheme is variable-step BDF2 (desire2023 Sec. 2.1.2: backward Euler to start, then
+y' ~ c0 y_{n+1} + c1 y_n + c2 y_{n-1} on X and V). The banded LU is ``cablefem.banded``
+(LAPACK's dgbtf2/dgbtrs written out for numba: numba cannot cache a ctypes call to LAPACK).
 
-The seabed is projected in the loop too: a plane by the fused kernel itself,
-a ``DepthGrid`` by its compiled bilinear projection, a ``TriangulatedSurface``
-by its compiled walk (``_vertex_normal_jit.project``), which starts where the
-seabed's last call for these points ended and hands its last call back. When
-the walk cannot place a point (it moved beyond its triangle's neighbours), the
-loop stops and that step projects in Python, whose search finds it. Other
-seabeds, and loads the fused kernel does not know, keep the per-step Python path.
+The seabed is projected in the loop too: a plane by the kernel itself, a ``DepthGrid`` by its
+compiled bilinear projection, a ``TriangulatedSurface`` by its compiled walk
+(``_vertex_normal_jit.project``), which starts where the seabed's last call for these points ended
+and hands its last call back. When the walk cannot place a point (it moved beyond its triangle's
+neighbours), the loop stops and that step goes on in Python, whose search finds it.
 """
+
+from collections import namedtuple
 
 import numpy as np
 from numba import njit
 
+from . import kernels, policy
 from .banded import lu_factor, lu_solve
-from .branches import branches, keep_branches
-from .fused import _assemble_loop
-from .geometry import DepthGrid, TriangulatedSurface
 from .geometry import _vertex_normal_jit as walk
 from .geometry.grid import _project as _grid_project
 from .geometry.triangulated import WALK_STEPS
 
-#: status of a run of steps: all taken, Newton failed at step k, step k grows too fast, or the
-#: compiled walk on a triangulated seabed did not place a point (Python projects that step)
-DONE, FAILED, TOO_LONG, PROJECTION = 0, 1, 2, 3
-#: seabeds the loop projects itself: a plane (in the fused kernel), a depth grid, a triangulated
-#: surface (the compiled walk of ``_vertex_normal_jit``)
+#: seabeds the loop projects itself: a plane (in the kernel), a depth grid, a triangulated surface
 PLANE, GRID, TRIANGULATED = 0, 1, 2
-#: what ``_newton`` returns
-_CONVERGED, _DIVERGED, _LOST = 0, 1, 2
-#: False and True as run-time values for the tangent flag: numba compiles a callee once more for
-#: every literal argument, and the kernel's copies for literal True and False took ~30 s of the
-#: first run's compilation
-_FLAG = np.array([False, True])
+#: a step of the compiled loop may be halved this many times (the fairlead's positions at the
+#: 2**DEPTH - 1 points that split each step evenly are given); deeper, the Python ops go on
+DEPTH = 3
+FRACTIONS = 2 ** DEPTH
+
+#: the seabed's projection in the loop: kind, a grid's axes and depths, a triangulated surface's
+#: tables and the walk's warm start, and scratch (triangles, heights, points, packed outputs)
+Projector = namedtuple("Projector", "kind gx gy gz rows across safe size typical origin start unheld start_h "
+                                    "triangle sth xyz out")
+#: a run's clock (one record): t [s], the step before (0 at the start), the last step (0 if none), the
+#: attempt that stopped the run, the last attempt's final relative residual, the attempt's c0
+CLOCK = np.dtype([("t", "f8"), ("h_before", "f8"), ("last_h", "f8"), ("stopped", "f8"), ("residual", "f8"),
+                  ("c0", "f8")])
+#: what modified Newton's kept factors belong to (one record, kept between runs): the c0 of the
+#: factors (NaN: none) and "auto"'s full-Newton attempts still to run
+FACTORS = np.dtype([("c0", "f8"), ("auto_left", "f8")])
+#: everything the compiled ops read and write (``Marcher.problem``): the kernel's records; the state
+#: X, V, A, the step before's Xp, Vp, the last predictor and the rows M A + G (N, 3), updated in
+#: place; the trial X1, V1, A1, the guess, BDF2's histories and Newton's base (N, 3); the increment,
+#: Newton's step and its own step when corrected (n,); the band and its LU (flat, LAPACK's
+#: column-major layout), pivots and multipliers; the base's branch state; the byte views (dst, src)
+#: that keep the branch state as the base's and commit the trial history; the clock (CLOCK) and the
+#: factors' key (FACTORS); counters (policy.COUNTERS); the fairlead at the end of each step
+#: (m, 3) and at its splits (m, FRACTIONS - 1, 3); the anchor (3,); the fairlead of the attempt (3,)
+Problem = namedtuple("Problem", "settings mesh bed pts work projector free_nodes free_order all_elements "
+                                "end_elements anchor_node fairlead_node scale "
+                                "X V A Xp Vp prediction rows X1 V1 A1 guess x_hist v_hist base "
+                                "rhs step original band lu ipiv multipliers base_full base_reduced keeps commits "
+                                "clock factors counters fairlead fractions anchor target")
 
 
 @njit(cache=True, _nrt=False)
@@ -67,109 +78,6 @@ def _copy_flat(dst, src):
         dst[i] = src[i]
 
 
-@njit(cache=True)
-def _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal, derivatives):
-    """Project the full quadrature points of X1 onto a grid or triangulated seabed into gap
-    (nel, nq), normal and, with ``derivatives`` (a tangent needs them), grad_gap (nel, nq, 3) and
-    dnormal (nel, nq, 3, 3), as ``FusedEvaluator.evaluate`` does through ``Seabed.project``; the
-    walk's warm start moves on to this call. Returns the number of points the walk did not
-    place (-1: moved too far)."""
-    (kind, gx, gy, gz, rows, across, safe, size, typical, origin, start, unheld, start_h, triangle, sth,
-     xyz, out) = projector
-    nel, nloc = dofs.shape
-    nq = phi.shape[2]
-    for e in range(nel):
-        for g in range(nq):
-            p = e * nq + g
-            for a in range(3):
-                acc = 0.0
-                for l in range(nloc):
-                    acc += phi[l, e, g] * X1[dofs[e, l], a]
-                xyz[a, p] = acc
-    if kind == GRID:
-        _grid_project(xyz, gx, gy, gz, True, out)
-    else:
-        mode = walk.EVERYTHING if derivatives else walk.GAP_AND_DIRECTION
-        lost = walk.project(xyz, origin, start, start_h, unheld, rows, across, safe, size, typical,
-                            WALK_STEPS, True, mode, triangle, sth, out)
-        if lost != 0:
-            return lost
-        for p in range(xyz.shape[1]):  # the next call starts here (loops: no temporary copies)
-            for a in range(3):
-                origin[a, p] = xyz[a, p]
-            start[p] = triangle[p]
-            start_h[p] = sth[2, p]
-            unheld[p] = False
-    for e in range(nel):
-        for g in range(nq):
-            p = e * nq + g
-            gap[e, g] = out[0, p]
-            for a in range(3):
-                normal[e, g, a] = out[1 + a, p]
-                if derivatives:
-                    grad_gap[e, g, a] = out[7 + a, p]
-                    for b in range(3):
-                        dnormal[e, g, a, b] = out[10 + 3 * a + b, p]
-    return 0
-
-
-@njit(cache=True, _nrt=False)
-def _point(X1, x_hist, v_hist, c0, V1, A1):
-    """V and A of BDF2 at positions X1: V = c0 X1 + x_hist, A = c0 V + v_hist."""
-    for i in range(X1.shape[0]):
-        for a in range(3):
-            V1[i, a] = c0 * X1[i, a] + x_hist[i, a]
-            A1[i, a] = c0 * V1[i, a] + v_hist[i, a]
-
-
-@njit(cache=True, _nrt=False)
-def _evaluate(kernel, projector, X1, V1, A1, c0, tangent, rows, band2, scratch, elements, counters,
-              held=False):
-    """The step residual M A + G at X1, V1, A1 into ``rows`` over ``elements`` and, with
-    ``tangent``, its banded tangent into ``band2`` (both zeroed first), the seabed projected first
-    unless it is a plane (with its derivatives when a tangent is assembled); ``held``: the points
-    scratch's hold and pull flags hold on their branches (see ``_newton``). Returns the
-    projection's status (0, or the points the walk did not place)."""
-    (dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass, bed, plane, gap,
-     normal, grad_gap, dnormal, kl, ku) = kernel[:19]
-    if projector[0] != PLANE:
-        lost = _project(projector, X1, dofs, phi, gap, normal, grad_gap, dnormal, tangent)
-        if lost != 0:
-            return lost
-    vec, blk, Re, Ke, M, u = scratch[:6]
-    hold, pull, slip, taut, contact = scratch[7], scratch[8], scratch[9], scratch[10], scratch[13]
-    rows[:] = 0.0
-    if tangent:
-        band2.T[:] = 0.0  # the contiguous (nb, ld) view: a memset, not a strided walk
-    _assemble_loop(X1, V1, A1, dofs, position, phi, dphi, dx, rphi, rdphi, rdx, params, tension, mass, bed,
-                   plane, gap, normal, grad_gap, dnormal, c0, c0 * c0, tangent, rows, band2, kl, ku,
-                   position.shape[0] - 1, vec, blk, Re, Ke, M, u, elements, hold, pull, held, slip,
-                   taut, contact)  # position: a permutation
-    counters[2] += 1
-    return 0
-
-
-@njit(cache=True, _nrt=False)
-def _increment(refactor, lu, band, kl, ku, ipiv, multipliers, lu_key, c0, counters, rows, free_order, rhs):
-    """The Newton increment of the free unknowns for residual ``rows`` into ``rhs`` (band order),
-    with ``refactor`` from fresh LU factors of the tangent ``band`` (counted; lu_key[0] the c0
-    they belong to, NaN when singular), else from those in ``lu``. Returns its largest entry:
-    NaN if the tangent is singular, inf or NaN if the increment is not finite."""
-    if refactor:
-        counters[3] += 1
-        _copy_flat(lu, band)
-        lu_key[0] = np.nan
-        if not lu_factor(lu, ipiv.shape[0], kl, ku, ipiv, multipliers):
-            return np.nan
-        counters[4] += 1
-        lu_key[0] = c0
-    for j in range(free_order.shape[0]):
-        for a in range(3):
-            rhs[3 * j + a] = -rows[free_order[j], a]
-    lu_solve(lu, rhs.shape[0], kl, ku, ipiv, rhs)
-    return _largest(rhs)
-
-
 @njit(cache=True, _nrt=False)
 def _largest(x):
     """max |x_j|, or NaN if an entry is NaN."""
@@ -183,384 +91,276 @@ def _largest(x):
     return size
 
 
-@njit(cache=True, _nrt=False)
-def _add_step(X1, free_order, step, scale):
-    """X1 += scale step on the free unknowns (step in band order)."""
-    for j in range(free_order.shape[0]):
-        for a in range(3):
-            X1[free_order[j], a] += scale * step[3 * j + a]
-
-
-@njit(cache=True, _nrt=False)
-def _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv, lu_key, rhs, base,
-            step, scratch, settings, counters, reuse, max_corrections):
-    """Newton on the step residual M A + G = 0 from X1 (updated in place), as
-    ``Integrator._newton``: full (a fresh tangent each iteration) or, with ``reuse``,
-    modified (the LU factors ``lu``/``ipiv`` kept across iterations and steps while the step's
-    c0 is ``lu_key[0]``, rebuilt when the iteration contracts slower than settings[6]).
-    ``band`` (the size of ``lu``) takes a fresh tangent before it is factored into ``lu``; a step
-    that does not reduce the residual norm is halved down to settings[7] (Armijo), from
-    ``base`` (N, 3) along ``step`` (n,) (scratch).
-    Returns (outcome, refreshed, the last relative residual): _CONVERGED, with V1, A1 and the end
-    rows of ``rows`` at the solution, _DIVERGED, or _LOST when the seabed projection
-    (``projector``, see ``bdf2_steps``) could not place a point; refreshed: kept factors were
-    rebuilt for slow contraction."""
-    kl, ku, free_nodes, free_order, all_elements, end_elements = kernel[17:23]
-    tolerance, increment_tolerance, scale = settings[0], settings[1], settings[2]
-    contraction = settings[6]
-    nb = rhs.shape[0]
-    ld = 2 * kl + ku + 1
-    band2 = band.reshape((nb, ld)).T  # the (ld, nb) column-major view the assembly writes
-    multipliers, original = scratch[6], scratch[15]  # original: Newton's own step, when corrected
-    fresh = not reuse or lu_key[0] != c0
-    previous, refreshed, norm = -1.0, False, np.inf  # none yet
-    base_norm, damping, min_damping = -1.0, 1.0, settings[7]  # base_norm < 0: no step taken yet
-    damped = False  # the step taken started from a point a damped step reached
-    corrections = 0  # of the step from the base
-    for _ in range(int(settings[3])):
-        _point(X1, x_hist, v_hist, c0, V1, A1)
-        # the tangent with the residual unless the last residual promises convergence (Newton) or
-        # the step started from a damped point (its full step is mostly rejected)
-        with_tangent = fresh and damping == 1.0 and not damped and (
-            base_norm < 0.0 or base_norm > np.sqrt(tolerance))
-        if _evaluate(kernel, projector, X1, V1, A1, c0, with_tangent, rows, band2, scratch, all_elements,
-                     counters) != 0:
-            return _LOST, refreshed, norm
-        norm = 0.0
-        for i in free_nodes:
+@njit(cache=True)
+def _project(proj, X1, mesh, bed, derivatives):
+    """Project the full quadrature points of X1 onto a grid or triangulated seabed into the bed's
+    gap (nel, nq), normal and, with ``derivatives`` (a tangent needs them), gap gradient (nel, nq, 3)
+    and normal gradient (nel, nq, 3, 3), as ``FusedEvaluator.bed`` does through ``Seabed.project``;
+    the walk's warm start moves on to this call. Returns the number of points the walk did not
+    place (-1: moved too far)."""
+    dofs, phi, xyz, out = mesh.dofs, mesh.phi, proj.xyz, proj.out
+    nel, nloc = dofs.shape
+    nq = phi.shape[2]
+    for e in range(nel):
+        for g in range(nq):
+            p = e * nq + g
             for a in range(3):
-                norm += rows[i, a] * rows[i, a]
-        norm = np.sqrt(norm) / scale
-        if norm <= tolerance and previous >= 0.0:
-            return _CONVERGED, refreshed, norm
-        if base_norm >= 0.0 and damping > min_damping and not norm <= (1 - 1e-4 * damping) * base_norm:
-            if damping == 1.0 and corrections < max_corrections and fresh and branches(
-                    scratch, kernel[11][5], corrections > 0):  # Newton again from the base on the new branches
-                if corrections == 0:
-                    _copy_flat(original, step)
-                corrections += 1
-                counters[6] += 1
-                _copy_rows(X1, base)
-                _point(X1, x_hist, v_hist, c0, V1, A1)
-                _evaluate(kernel, projector, X1, V1, A1, c0, _FLAG[1], rows, band2, scratch, all_elements,
-                          counters, _FLAG[1])
-                size = _increment(True, lu, band, kl, ku, ipiv, multipliers, lu_key, c0, counters, rows,
-                                  free_order, rhs)
-                if not np.isfinite(size):
-                    break
-                _copy_flat(step, rhs)
-                _add_step(X1, free_order, rhs, 1.0)
-                counters[1] += 1
-                previous = size
-                continue
-            if damping == 1.0 and corrections > 0:  # no correction passed: the line search halves Newton's step
-                _copy_flat(step, original)
-                previous = _largest(original)
-            damping *= 0.5
-            _copy_rows(X1, base)
-            _add_step(X1, free_order, step, damping)
-            continue
-        if not np.isfinite(norm):
-            break
-        if fresh and not with_tangent:  # the same point again, with the tangent (the walk places it)
-            _evaluate(kernel, projector, X1, V1, A1, c0, _FLAG[1], rows, band2, scratch, all_elements, counters)
-        size = _increment(fresh, lu, band, kl, ku, ipiv, multipliers, lu_key, c0, counters, rows, free_order,
-                          rhs)
-        if not np.isfinite(size):
-            break
-        _copy_rows(base, X1)
-        _copy_flat(step, rhs)
-        base_norm, damping, damped = norm, 1.0, damping < 1.0
-        keep_branches(scratch)
-        corrections = 0
-        _add_step(X1, free_order, rhs, 1.0)
-        counters[1] += 1
-        rho = size / previous if previous > 0.0 else -1.0
-        if (fresh and size <= increment_tolerance) or (
-                0.0 <= rho < 1.0 and size * rho / (1 - rho) <= increment_tolerance):
-            # the reactions need only the end rows: evaluate the two end elements
-            _point(X1, x_hist, v_hist, c0, V1, A1)
-            if _evaluate(kernel, projector, X1, V1, A1, c0, _FLAG[0], rows, band2, scratch, end_elements,
-                         counters) != 0:
-                return _LOST, refreshed, norm
-            return _CONVERGED, refreshed, norm
-        fresh = not reuse or rho > contraction
-        refreshed = refreshed or (reuse and fresh)
-        previous = size
-    lu_key[0] = np.nan
-    return _DIVERGED, refreshed, norm
+                acc = 0.0
+                for l in range(nloc):
+                    acc += phi[l, e, g] * X1[dofs[e, l], a]
+                xyz[a, p] = acc
+    if proj.kind == GRID:
+        _grid_project(xyz, proj.gx, proj.gy, proj.gz, True, out)
+    else:
+        mode = walk.EVERYTHING if derivatives else walk.GAP_AND_DIRECTION
+        lost = walk.project(xyz, proj.origin, proj.start, proj.start_h, proj.unheld, proj.rows, proj.across,
+                            proj.safe, proj.size, proj.typical, WALK_STEPS, True, mode, proj.triangle, proj.sth,
+                            out)
+        if lost != 0:
+            return lost
+        for p in range(xyz.shape[1]):  # the next call starts here (loops: no temporary copies)
+            for a in range(3):
+                proj.origin[a, p] = xyz[a, p]
+            proj.start[p] = proj.triangle[p]
+            proj.start_h[p] = proj.sth[2, p]
+            proj.unheld[p] = False
+    for e in range(nel):
+        for g in range(nq):
+            p = e * nq + g
+            bed.gap[e, g] = out[walk.GAP, p]
+            for a in range(3):
+                bed.normal[e, g, a] = out[1 + a, p]  # walk.DIRECTION
+                if derivatives:
+                    bed.grad_gap[e, g, a] = out[7 + a, p]  # walk.GAP_GRADIENT
+                    for b in range(3):
+                        bed.dnormal[e, g, a, b] = out[10 + 3 * a + b, p]  # walk.DIRECTION_GRADIENT
+    return 0
+
+
+# ------------------------------------------------------------------------- the policy's ops
+@njit(cache=True, _nrt=False)
+def _point(prob):
+    """V and A of BDF2 at the trial positions X1: V = c0 X1 + x_hist, A = c0 V + v_hist."""
+    c0 = prob.clock[0].c0
+    X1, V1, A1, x_hist, v_hist = prob.X1, prob.V1, prob.A1, prob.x_hist, prob.v_hist
+    for i in range(X1.shape[0]):
+        for a in range(3):
+            V1[i, a] = c0 * X1[i, a] + x_hist[i, a]
+            A1[i, a] = c0 * V1[i, a] + v_hist[i, a]
 
 
 @njit(cache=True, _nrt=False)
-def _attempt(kernel, projector, state, history, h, position, anchor, settings, lu, ipiv, lu_key, work,
-             counters):
-    """One BDF2 step of size h from t = history[0] with the fairlead at ``position`` (3,) (see
-    ``bdf2_steps`` for the arguments; ``work``: its scratch), its time arithmetic that of
-    ``BDF2.attempt`` (t + h). On _CONVERGED the state and history move on to t + h and ``rows``
-    holds the reactions; otherwise (_DIVERGED, _LOST) they are those
-    before the step. A step whose modified Newton fails is retried once from its start with a
-    fresh tangent ("auto": in full Newton)."""
-    anchor_node, fairlead_node = kernel[23], kernel[24]  # the kernel tuple's last two
-    X, V, A, Xp, Vp, prediction, rows = state
-    rhs, step, band, base, X1, V1, A1, guess, x_hist, v_hist, scratch = work
-    N = X.shape[0]
-    t, h_before = history[0], history[1]
+def _assemble(prob, tangent, held, elements):
+    """The step residual M A + G at the trial point into ``prob.rows`` over ``elements`` and, with
+    ``tangent``, its banded tangent into ``prob.band`` (both zeroed first), the seabed projected first
+    unless it is a plane. Returns the projection's status (0, or the points the walk did not place)."""
+    _point(prob)
+    if prob.projector.kind != PLANE:
+        lost = _project(prob.projector, prob.X1, prob.mesh, prob.bed, tangent)
+        if lost != 0:
+            return lost
+    c0 = prob.clock[0].c0
+    nb = prob.rhs.shape[0]
+    ld = 2 * prob.mesh.kl + prob.mesh.ku + 1
+    band2 = prob.band.reshape((nb, ld)).T  # the (ld, nb) column-major view the assembly writes
+    prob.rows[:] = 0.0
+    if tangent:
+        band2.T[:] = 0.0  # the contiguous (nb, ld) view: a memset, not a strided walk
+    kernels.assemble(prob.mesh, prob.bed, prob.pts, prob.work, (prob.X1, prob.V1, prob.A1), (c0, c0 * c0),
+                     tangent, held, prob.rows, band2, elements)
+    prob.counters[policy.NFEV] += 1
+    return 0
+
+
+@njit(cache=True, _nrt=False)
+def evaluate(prob, tangent, held):
+    return _assemble(prob, tangent, held, prob.all_elements)
+
+
+@njit(cache=True, _nrt=False)
+def finish(prob):
+    """The reactions need only the end rows: evaluate the two end elements."""
+    return _assemble(prob, False, False, prob.end_elements)
+
+
+@njit(cache=True, _nrt=False)
+def norm(prob):
+    total = 0.0
+    for i in prob.free_nodes:
+        for a in range(3):
+            total += prob.rows[i, a] * prob.rows[i, a]
+    return np.sqrt(total) / prob.scale
+
+
+@njit(cache=True, _nrt=False)
+def increment(prob, refactor):
+    """The Newton increment of the free unknowns for the rows into ``prob.rhs`` (band order): with
+    ``refactor`` from fresh LU factors of the band (counted; ``factors.c0`` the c0 they belong to,
+    NaN when singular), else from those kept. Returns its largest entry (NaN: singular)."""
+    mesh, key, counters, rhs = prob.mesh, prob.factors[0], prob.counters, prob.rhs
+    if refactor:
+        counters[policy.NJEV] += 1
+        _copy_flat(prob.lu, prob.band)
+        key.c0 = np.nan
+        if not lu_factor(prob.lu, prob.ipiv.shape[0], mesh.kl, mesh.ku, prob.ipiv, prob.multipliers):
+            return np.nan
+        counters[policy.NLU] += 1
+        key.c0 = prob.clock[0].c0
+    for j in range(prob.free_order.shape[0]):
+        for a in range(3):
+            rhs[3 * j + a] = -prob.rows[prob.free_order[j], a]
+    lu_solve(prob.lu, rhs.shape[0], mesh.kl, mesh.ku, prob.ipiv, rhs)
+    size = _largest(rhs)
+    _copy_flat(prob.step, rhs)
+    return size
+
+
+@njit(cache=True, _nrt=False)
+def factors_current(prob):
+    return prob.factors[0].c0 == prob.clock[0].c0
+
+
+@njit(cache=True, _nrt=False)
+def forget_factors(prob):
+    prob.factors[0].c0 = np.nan
+
+
+@njit(cache=True, _nrt=False)
+def take_step(prob, fraction):
+    """X1 = base + fraction step on the free unknowns (step in band order)."""
+    _copy_rows(prob.X1, prob.base)
+    for j in range(prob.free_order.shape[0]):
+        for a in range(3):
+            prob.X1[prob.free_order[j], a] += fraction * prob.step[3 * j + a]
+
+
+@njit(cache=True, _nrt=False)
+def set_base(prob):
+    """The trial becomes Newton's base, with its branch state (the holds compare against it)."""
+    _copy_rows(prob.base, prob.X1)
+    for dst, src in prob.keeps:
+        _copy_flat(dst, src)
+
+
+@njit(cache=True, _nrt=False)
+def restore_base(prob):
+    _copy_rows(prob.X1, prob.base)
+
+
+@njit(cache=True, _nrt=False)
+def hold(prob, again):
+    return kernels.hold_points(prob.pts, prob.base_full, prob.base_reduced, again)
+
+
+@njit(cache=True, _nrt=False)
+def save_original(prob):
+    _copy_flat(prob.original, prob.step)
+
+
+@njit(cache=True, _nrt=False)
+def restore_original(prob):
+    _copy_flat(prob.step, prob.original)
+    return _largest(prob.original)
+
+
+@njit(cache=True, _nrt=False)
+def begin(prob, h):
+    """BDF2's coefficients for a step of h from the current state (backward Euler to start), its
+    histories x_hist = c1 X + c2 Xp, v_hist = c1 V + c2 Vp, and the Taylor predictor X + h V + h^2/2 A
+    with the fairlead (``prob.target``, set by ``fairlead``) and the anchor in place."""
+    X, V, A, Xp, Vp, guess = prob.X, prob.V, prob.A, prob.Xp, prob.Vp, prob.guess
+    clock = prob.clock[0]
+    h_before = clock.h_before
     start = h_before == 0.0
-    if start:  # backward Euler to start (BDF2.coefficients)
+    if start:
         c0, c1, c2 = 1.0 / h, -1.0 / h, 0.0
     else:
         w = h / h_before
         c0, c1, c2 = (1 + 2 * w) / ((1 + w) * h), -(1 + w) / h, w * w / ((1 + w) * h)
-    for i in range(N):
+    clock.c0 = c0
+    for i in range(X.shape[0]):
         for a in range(3):
-            x_hist[i, a] = c1 * X[i, a] + c2 * (X[i, a] if start else Xp[i, a])
-            v_hist[i, a] = c1 * V[i, a] + c2 * (V[i, a] if start else Vp[i, a])
-            guess[i, a] = X[i, a] + h * V[i, a] + 0.5 * h * h * A[i, a]  # Integrator.predict
+            prob.x_hist[i, a] = c1 * X[i, a] + c2 * (X[i, a] if start else Xp[i, a])
+            prob.v_hist[i, a] = c1 * V[i, a] + c2 * (V[i, a] if start else Vp[i, a])
+            guess[i, a] = X[i, a] + h * V[i, a] + 0.5 * h * h * A[i, a]
     for a in range(3):
-        guess[fairlead_node, a] = position[a]
-        guess[anchor_node, a] = anchor[a]
-    # full or modified Newton; "auto" (settings[5] == 2): modified unless lu_key[1] attempts are
-    # still to run in full Newton, as Integrator.newton chooses
-    reuse = settings[5] == 1.0 or (settings[5] == 2.0 and lu_key[1] <= 0.0)
-    _copy_rows(X1, guess)
-    corrected = counters[6]
-    outcome, trouble, last = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv,
-                                           lu_key, rhs, base, step, scratch, settings, counters, reuse, settings[11])
-    if reuse and outcome == _DIVERGED:  # once more from the start: modified with a fresh tangent, or full
-        trouble = True
-        _copy_rows(X1, guess)
-        outcome, _, last = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv,
-                                         lu_key, rhs, base, step, scratch, settings, counters, settings[5] == 1.0,
-                                         settings[11])
-    if outcome == _DIVERGED and counters[6] > corrected:  # corrected and failed: once more without
-        _copy_rows(X1, guess)
-        lu_key[0] = np.nan
-        outcome, _, last = _newton(kernel, projector, X1, V1, A1, x_hist, v_hist, c0, rows, band, lu, ipiv,
-                                         lu_key, rhs, base, step, scratch, settings, counters, settings[5] == 1.0, 0.0)
-    history[4] = last
-    if settings[5] == 2.0 and outcome != _LOST:
-        if reuse and trouble:
-            lu_key[1] = settings[9]
-        elif not reuse:
-            lu_key[1] -= 1.0
-    if outcome != _CONVERGED:
-        return outcome
-    _copy_rows(prediction, guess)
-    _copy_rows(Xp, X)
-    _copy_rows(Vp, V)
-    _copy_rows(X, X1)
-    _copy_rows(V, V1)
-    _copy_rows(A, A1)
-    history[0], history[1], history[2] = t + h, h, h
-    counters[0] += 1
-    return _CONVERGED
+        guess[prob.fairlead_node, a] = prob.target[a]
+        guess[prob.anchor_node, a] = prob.anchor[a]
 
 
-#: a step of ``bdf2_steps`` may be halved this many times in its loop (the fairlead's positions at
-#: the 2**DEPTH - 1 points that split each step evenly are given); deeper, ``Integrator.step`` halves
-DEPTH = 3
-FRACTIONS = 2 ** DEPTH
+@njit(cache=True, _nrt=False)
+def restart(prob):
+    _copy_rows(prob.X1, prob.guess)
 
 
-@njit(cache=True)
-def bdf2_steps(kernel, projector, state, history, times, fairlead, fractions, anchor, settings, lu, ipiv,
-               lu_key, forces, counters):
-    """BDF2 steps to ``times`` (m,) in turn, the fairlead at ``fairlead`` (m, 3) and the anchor at
-    ``anchor`` (3,). Returns (status, k): DONE with k = m, or FAILED / TOO_LONG / PROJECTION at
-    step k, the state being that after the attempts of step k that went through; history[3] is
-    then the size of the attempt that stopped.
-
-    With ``fractions`` (m, FRACTIONS - 1, 3), the fairlead at t_(k-1) + j (t_k - t_(k-1)) /
-    FRACTIONS for j = 1 .. FRACTIONS - 1, each step is taken as ``Integrator.step`` takes it, line
-    for line: an attempt whose Newton fails is halved, no attempt is longer than settings[4]
-    times the last step, none leaves less than settings[10] of itself to go. The loop stops for
-    ``Integrator.step`` to go on when an attempt does not end on one of those points (TOO_LONG
-    before it; FAILED when a halving would go deeper) or a halved step would be shorter than
-    settings[8] (FAILED). Without (``fractions`` empty: ``BDF2.attempt``), step k is one attempt
-    of t_k - t_(k-1), and a failure stops the loop (FAILED).
-
-    kernel: the fused evaluator's arrays (``Marcher.kernel``); projector: (kind, grid x, y, z,
-    the walk's tables and warm start, scratch) (``Marcher.projector``); state: (X, V, A, Xp, Vp,
-    prediction, rows), each (N, 3), updated in place (Xp, Vp: the step before's; rows: M A + G
-    with only the anchor and fairlead rows evaluated); history: [t, h of the step before (0 at
-    the start), the last step (0 if none), the stopping attempt's size, the last attempt's final
-    relative residual], updated; settings:
-    [tolerance, increment tolerance, residual scale, max iterations, largest growth of a step
-    over the last, Newton (0 full, 1 modified, 2 auto), contraction limit, smallest line-search
-    damping, smallest step, auto's full-Newton attempts after trouble, the stretch of a step
-    that lands on its end, corrections of a Newton step on new branches]; lu
-    (n (2 kl + ku + 1),) (see ``cablefem.banded``), ipiv (n,),
-    lu_key (2,): the c0 modified Newton's factors belong to (NaN: none) and auto's full-Newton
-    attempts still to run, kept between calls; forces (m, 2, 3): the line's forces on fairlead
-    and anchor after each step; counters: [steps, newton iterations, residual evaluations,
-    tangents, LU factorisations, failed attempts, corrections], added to.
-    """
-    anchor_node, fairlead_node = kernel[23], kernel[24]
-    X, rows = state[0], state[6]
-    N = X.shape[0]
-    nloc, nel, nq = kernel[2].shape
-    nr = kernel[5].shape[2]
-    # _attempt's scratch: rhs, step, band, base, X1, V1, A1, guess, x_hist, v_hist, and the
-    # evaluation's and Newton's: vec, blk, Re, Ke, M, u (the kernel's), LU multipliers (6), the
-    # branch holds of full and reduced points (7, 8), slip velocities (9), taut points (10), the
-    # base's slip and taut points (11, 12), contact states and the base's (13, 14), Newton's own
-    # step when corrected (15)
-    work = (np.empty(ipiv.shape[0]), np.empty(ipiv.shape[0]), np.zeros(lu.shape[0]), np.empty((N, 3)),
-            np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)), np.empty((N, 3)),
-            np.empty((N, 3)),
-            (np.zeros((7, 3)), np.zeros((4, 3, 3)), np.zeros((nloc, 3)), np.zeros((nloc, 3, nloc, 3)),
-             np.zeros((12, 3, 3)), np.zeros((12, 3)), np.empty(kernel[17] + 1),
-             np.zeros((nel, nq), dtype=np.int8), np.zeros((nel, nr), dtype=np.bool_), np.zeros((nel, nq, 3)),
-             np.zeros((nel, nr), dtype=np.bool_), np.zeros((nel, nq, 3)), np.zeros((nel, nr), dtype=np.bool_),
-             np.zeros((nel, nq), dtype=np.int8), np.zeros((nel, nq), dtype=np.int8), np.empty(ipiv.shape[0])))
-    stepping = fractions.shape[0] > 0
-    growth, stretch, min_step = settings[4], settings[10], settings[8]
-    parts = fractions.shape[1] + 1
-    for k in range(times.shape[0]):
-        target = times[k] - history[0]
-        if not stepping:
-            history[3] = target
-            outcome = _attempt(kernel, projector, state, history, target, fairlead[k], anchor, settings, lu,
-                               ipiv, lu_key, work, counters)
-            if outcome == _DIVERGED:
-                return FAILED, k
-        else:  # Integrator.step
-            done, h, outcome, halved = 0.0, target, _CONVERGED, False
-            while target - done > 1e-9 * target:
-                remaining = target - done
-                h = min(h, remaining)
-                if history[2] > 0.0:
-                    h = min(h, growth * history[2])
-                if remaining - h <= stretch * h:
-                    h = remaining
-                history[3] = h
-                share = (done + h) / target * parts  # where the attempt ends, in 1/parts of the step
-                j = int(np.round(share))
-                if abs(share - j) > 1e-6 or j < 1:  # Integrator.step goes on from here
-                    if halved:
-                        history[3] = 2.0 * h  # the attempt that failed
-                        return FAILED, k
-                    return TOO_LONG, k
-                position = fairlead[k] if j == parts else fractions[k, j - 1]
-                outcome = _attempt(kernel, projector, state, history, h, position, anchor, settings, lu, ipiv,
-                                   lu_key, work, counters)
-                if outcome == _LOST:
-                    break
-                if outcome == _DIVERGED:
-                    counters[5] += 1
-                    if 0.5 * h < min_step:
-                        return FAILED, k
-                    h *= 0.5
-                    halved = True
-                    continue
-                done += h
-                h, halved = target, False
-        if outcome == _LOST:
-            return PROJECTION, k
-        for a in range(3):
-            forces[k, 0, a] = -rows[fairlead_node, a]
-            forces[k, 1, a] = -rows[anchor_node, a]
-    return DONE, times.shape[0]
+@njit(cache=True, _nrt=False)
+def accept(prob, h):
+    """The trial is the new state at t + h: BDF2's memory moves on."""
+    _copy_rows(prob.prediction, prob.guess)
+    _copy_rows(prob.Xp, prob.X)
+    _copy_rows(prob.Vp, prob.V)
+    _copy_rows(prob.X, prob.X1)
+    _copy_rows(prob.V, prob.V1)
+    _copy_rows(prob.A, prob.A1)
+    for dst, src in prob.commits:
+        _copy_flat(dst, src)
+    clock = prob.clock[0]
+    clock.t, clock.h_before, clock.last_h = clock.t + h, h, h
 
 
-class Marcher:
-    """Runs a ``BDF2`` integrator's steps through ``bdf2_steps``; built by ``for_integrator``."""
+@njit(cache=True, _nrt=False)
+def auto_left(prob):
+    return prob.factors[0].auto_left
 
-    def __init__(self, integ, kind):
-        fem, ev = integ.fem, integ.fused
-        self.seabed, self.kind = integ.system.seabed, kind
-        nel, nq = ev.full.dx.shape
-        if kind == PLANE:  # the kernel computes the gap itself
-            gap, normal, grad_gap, dnormal = ev.unused
-        else:  # written by ``_project`` each evaluation
-            gap, normal, grad_gap, dnormal = (np.zeros((nel, nq)), np.zeros((nel, nq, 3)), np.zeros((nel, nq, 3)),
-                                              np.zeros((nel, nq, 3, 3)))
-        ends = np.unique(np.flatnonzero(np.isin(ev.dofs, (fem.anchor_dof, fem.fairlead_dof)).any(axis=1)))
-        self.kernel = (ev.dofs, ev.position, ev.full.phi, ev.full.dphi, ev.full.dx, ev.reduced.phi,
-                       ev.reduced.dphi, ev.reduced.dx, ev.params, ev.tension, ev.mass, ev.bed, ev.plane,
-                       gap, normal, grad_gap, dnormal, ev.kl, ev.ku, fem.free_dofs.astype(np.int64),
-                       ev.free_order.astype(np.int64), np.arange(fem.n_elements, dtype=np.int64),
-                       ends.astype(np.int64), int(fem.anchor_dof), int(fem.fairlead_dof))
-        self.points = nel * nq
-        self.rule = fem.full  # positions at its quadrature points: the walk's start
-        self.anchor = np.asarray(integ.system.line.anchor, dtype=float)
-        self.settings = np.array([integ.tolerance, integ.increment_tolerance, integ.scale,
-                                  integ.max_iterations, integ.MAX_GROWTH,
-                                  2.0 if integ.switching else float(integ.reuse_jacobian),
-                                  integ.CONTRACTION, integ.MIN_DAMPING, integ.min_dt, integ.AUTO_FULL_STEPS,
-                                  integ.STRETCH, integ.MAX_CORRECTIONS])
-        self.lu = np.zeros(ev.n * (2 * ev.kl + ev.ku + 1))  # LAPACK's column-major band, flat
-        self.ipiv = np.zeros(ev.n, dtype=np.int64)
-        self.lu_key = np.full(2, np.nan)
 
-    @classmethod
-    def for_integrator(cls, integ):
-        """A marcher for ``integ`` when it evaluates with the fused kernel on a plane, a depth grid
-        or a triangulated surface with compiled projections; None otherwise (the per-step Python
-        path applies)."""
-        ev, seabed = integ.fused, integ.system.seabed
-        if ev is None:
-            return None
-        if ev.plane.size:
-            return cls(integ, PLANE)
-        if isinstance(seabed, DepthGrid) and seabed.compiled:
-            return cls(integ, GRID)
-        if isinstance(seabed, TriangulatedSurface) and seabed.compiled:
-            return cls(integ, TRIANGULATED)
-        return None
+@njit(cache=True, _nrt=False)
+def set_auto_left(prob, value):
+    prob.factors[0].auto_left = value
 
-    def projector(self, X):
-        """The projector tuple of ``bdf2_steps`` for state X (N, 3): the seabed's arrays, the
-        walk's warm start from the seabed's last call at these points, and scratch."""
-        n = self.points
-        zero1, zero2 = np.zeros(1), np.zeros((1, 1))
-        grid = (self.seabed.x, self.seabed.y, self.seabed.z) if self.kind == GRID else (zero1, zero1, zero2)
-        if self.kind == TRIANGULATED:
-            walker = self.seabed.walk_start(self.rule.interpolate(X)[0])
-        else:  # unused, typed as the walk's own
-            walker = (zero2, np.zeros((1, 3), dtype=np.int64), zero1, zero1, 0.0, np.zeros((3, n)),
-                      np.zeros(n, dtype=np.int64), np.zeros(n, dtype=bool), np.zeros(n))
-        return ((self.kind,) + grid + walker
-                + (np.zeros(n, dtype=np.int64), np.zeros((3, n)), np.zeros((3, n)), np.zeros((walk.OUTPUTS, n))))
 
-    def run(self, integ, times, fairlead, fractions=None):
-        """Steps of ``integ`` to ``times`` (m,) with the fairlead at ``fairlead`` (m, 3). With
-        ``fractions`` (m, FRACTIONS - 1, 3), the fairlead at the points that split each step
-        evenly (``BDF2.march``), each step is taken as ``Integrator.step`` takes it (halved on
-        failure, grown back) and the steps and failed attempts are counted into ``integ`` here;
-        without (``BDF2.attempt``), each step is one attempt and ``Integrator.step`` halves and
-        counts. Returns (status, k, forces (m, 2, 3), the size of the attempt that stopped the
-        loop)."""
-        h_before, Xp, Vp = (0.0, integ.X, integ.V) if integ.previous is None else integ.previous
-        state = tuple(np.array(x, dtype=float) for x in (integ.X, integ.V, integ.A, Xp, Vp, integ.X,
-                                                         np.zeros_like(integ.X)))
-        history = np.array([integ.t, h_before, integ.last_h or 0.0, 0.0, np.nan])
-        forces = np.empty((len(times), 2, 3))
-        counters = np.zeros(7, dtype=np.int64)
-        projector = self.projector(integ.X)
-        splits = (np.zeros((0, FRACTIONS - 1, 3)) if fractions is None
-                  else np.ascontiguousarray(fractions, dtype=float))
-        self.lu_key[1] = integ.full_steps_left  # "auto" Newton's state, shared with the Python path
-        status, k = bdf2_steps(self.kernel, projector, state, history, np.asarray(times, dtype=float),
-                               np.ascontiguousarray(fairlead, dtype=float), splits, self.anchor, self.settings,
-                               self.lu, self.ipiv, self.lu_key, forces, counters)
-        integ.full_steps_left = int(self.lu_key[1])
-        if self.kind == TRIANGULATED and counters[2]:  # the walk's last call: the next one starts there
-            origin, triangle, h = projector[9], projector[10], projector[12]
-            self.seabed.walk_end(origin, triangle, h)
-        integ.newton_iterations += int(counters[1])
-        integ.nfev += int(counters[2])
-        integ.njev += int(counters[3])
-        integ.nlu += int(counters[4])
-        if fractions is not None:
-            integ.steps += int(counters[0])
-            integ.rejected += int(counters[5])
-        integ.corrections += int(counters[6])
-        if counters[0] > 0:
-            X, V, A, Xp, Vp, prediction, rows = state
-            integ.X, integ.V, integ.A, integ.prediction, integ.residual_rows = X, V, A, prediction, rows
-            integ.previous = (float(history[1]), Xp, Vp)
-            integ.t, integ.last_h = float(history[0]), float(history[2])
-        if status != DONE:
-            integ.last_residual = float(history[4])
-        return status, k, forces, float(history[3])
+@njit(cache=True, _nrt=False)
+def count(prob, counter, amount):
+    prob.counters[counter] += amount
+    return prob.counters[counter]
+
+
+@njit(cache=True, _nrt=False)
+def time(prob):
+    return prob.clock[0].t
+
+
+@njit(cache=True, _nrt=False)
+def last_step(prob):
+    return prob.clock[0].last_h
+
+
+@njit(cache=True, _nrt=False)
+def record_residual(prob, value):
+    prob.clock[0].residual = value
+
+
+@njit(cache=True, _nrt=False)
+def record_stop(prob, h):
+    prob.clock[0].stopped = h
+
+
+@njit(cache=True, _nrt=False)
+def fairlead(prob, k, j, h):
+    """The fairlead where step k's attempt ending at its j-th split (of FRACTIONS) puts it."""
+    position = prob.fairlead[k] if j == FRACTIONS else prob.fractions[k, j - 1]
+    for a in range(3):
+        prob.target[a] = position[a]
+    return True
+
+
+@njit(cache=True, _nrt=False)
+def reactions(prob, forces, k):
+    for a in range(3):
+        forces[k, 0, a] = -prob.rows[prob.fairlead_node, a]
+        forces[k, 1, a] = -prob.rows[prob.anchor_node, a]
+
+
+# -------------------------------------------------------------------- the compiled policy
+#: the policy bound to these ops and compiled; ``policy.advance`` calls ``attempt`` through the ops
+_BOUND = policy.bind(__import__(__name__, fromlist=["_"]), compile=njit(cache=True), name="bdf2")
+attempt, STEPS = _BOUND["attempt"], _BOUND["steps"]

@@ -16,7 +16,7 @@ import time
 
 import numpy as np
 
-from .dynamics import INTEGRATORS, Integrator
+from .dynamics import INTEGRATORS, Integrator, integrator_options
 from .errors import ConvergenceError, InputError
 from .io.vtk import TimeSeriesWriter, polyline_mesh, write_atomic
 from .line import Line
@@ -134,13 +134,12 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
     start = time.perf_counter()
     write_seabed_vtu(scene.seabed, os.path.join(out_dir, "seabed.vtu"), _bounds(scene))
     integrator_class = INTEGRATORS[solver.integrator]
-    options = {"rho_inf": solver.rho_inf} if solver.integrator == "generalized-alpha" else {}
+    options = integrator_options(solver)
     if solver.adaptive and solver.integrator != "bdf2":
         raise InputError("adaptive steps need integrator = \"bdf2\"", key="solver.adaptive")
     systems = [build_system(scene, line) for line in scene.lines]
     states, static_iterations = start_states(scene, systems=systems)
-    integrators = [integrator_class(system, X0, boundary_path(scene, line), dt=dt,
-                                    tolerance=solver.tolerance, newton=solver.newton, **options)
+    integrators = [integrator_class(system, X0, boundary_path(scene, line), dt=dt, **options)
                    for system, line, X0 in zip(systems, scene.lines, states)]
     frames = TimeSeriesWriter(out_dir, scene.name)
     samplers = [LineSampler(integ.system) for integ in integrators]  # the frames' points, once

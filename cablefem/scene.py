@@ -66,8 +66,7 @@ class Motion:
     positions: np.ndarray | None = None
 
 
-#: integrators a scene may name in [solver] integrator (cablefem.dynamics implements them)
-INTEGRATORS = ("bdf2", "generalized-alpha")
+from .dynamics import INTEGRATORS  # noqa: E402, F401  (the one registry: [solver] integrator names a key)
 
 
 @dataclass(frozen=True)

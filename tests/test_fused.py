@@ -64,14 +64,17 @@ def test_compiled_and_numpy_runs_agree(cls):
     np.testing.assert_allclose(runs[1], runs[0], rtol=1e-8)
 
 
-def test_unknown_loads_keep_the_reference_path():
+def test_a_load_with_no_compiled_face_fails_loudly():
+    # issue 15: the compiled path never falls back silently (it used to return None here and send
+    # the whole run down the numpy path)
     scene = flume_scene("flat", elements=6)
     system = build_system(scene, scene.lines[0])
 
-    class Wind:  # a load the compiled kernel does not know
+    class Wind:  # a load the catalog does not know
         def evaluate(self, state, jacobian=True):
             from cablefem.loads import Terms
             return Terms()
 
     system.loads.append(Wind())
-    assert FusedEvaluator.for_system(system, system.props["mass"]) is None
+    with pytest.raises(TypeError, match="Wind is not in the load catalog"):
+        FusedEvaluator.for_system(system, system.props["mass"])

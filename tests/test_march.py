@@ -231,7 +231,7 @@ def test_residual_line_search_stops_newton_cycling_in_snap_loads():
     rejected = {}
     for damping in (Integrator.MIN_DAMPING, 1.0):  # 1.0: no line search
         integ = integrator(scene, 0.04, True)
-        integ.marcher.settings[7] = damping
+        integ.marcher.settings = integ.marcher.settings._replace(min_damping=damping)
         integ.march(times)
         rejected[damping] = integ.rejected
     assert rejected[1.0] >= 3

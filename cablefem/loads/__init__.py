@@ -7,7 +7,7 @@ internal force, entering as int N . phi' ds), with their derivatives when
 ``jacobian`` is true. The solver knows nothing of which loads exist.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -83,3 +83,30 @@ def add(a, b):
     if b is None:
         return a
     return a + b
+
+
+@dataclass(frozen=True)
+class LoadSpec:
+    """How a load presents itself to the compiled path.
+
+    name: its key in every record (``p.<name>.<field>``); rule: "full" or "reduced" (the
+    quadrature its points use, ``cablefem.fem.LineFEM``); params: numpy dtype fields of its
+    per-element parameters (an ``active`` flag is added); kernel: the compiled point function
+    ``kernel(ctx, p, old, new, state, hold, out, M, u)`` that adds the load at one point (see
+    ``cablefem.kernels``); state / hold / history: dtype fields per point (written each
+    evaluation / read / read from ``old`` and written to ``new``, committed on accepted steps);
+    hold_rule: compiled ``rule(base, state, hold, p, again) -> (held, changed)`` choosing the
+    holds after a rejected Newton step, or None; scratch: (3 x 3 matrices, 3-vectors) the kernel
+    uses; reference: the numpy face's class; frames: history fields written to VTK frames."""
+
+    name: str
+    rule: str
+    params: tuple
+    kernel: object
+    reference: type
+    state: tuple = ()
+    hold: tuple = ()
+    history: tuple = ()
+    hold_rule: object = None
+    scratch: tuple = (0, 0)
+    frames: tuple = field(default=())

@@ -12,13 +12,17 @@ added mass elsewhere) the load contributes nothing.
 """
 
 import numpy as np
+from numba import njit
 
-from . import Terms, identity_like, outer, unit_tangent
+from . import LoadSpec, Terms, identity_like, outer, unit_tangent
+from ._small import dot
 
 
 class AddedMass:
     """Added mass: diameter d [m], Ca_normal, Ca_tangential [-] per element (nel,),
     water density rho [kg/m^3]."""
+
+    name = "added_mass"
 
     def __init__(self, diameter, Ca_normal, Ca_tangential, water_density):
         rho_area = water_density * np.pi * np.asarray(diameter, dtype=float) ** 2 / 4.0
@@ -49,3 +53,36 @@ class AddedMass:
         terms.force_dr = -(outer(per_stretched, t)
                            + np.einsum("ab...,bc...->ac...", dk_dt, eye - tangential_projector))
         return terms
+
+    def params(self):
+        """The compiled face's parameters per element (``SPEC.params``), each (nel,)."""
+        return {"normal": self.normal[:, 0], "tangential": self.tangential[:, 0]}
+
+
+@njit(cache=True, _nrt=False)
+def added_mass_point(ctx, p, old, new, state, hold, out, M, u):
+    """The compiled face: added mass, normal and tangential, at one full point (see
+    ``cablefem.kernels``; ``ctx.P``, the normal projector, is set when a tangent is)."""
+    m = p.added_mass
+    normal, tangential = m.normal, m.tangential
+    if not m.active or not (normal > 0.0 or tangential > 0.0):
+        return
+    acc, t, P, stretch, a_x = ctx.a, ctx.t, ctx.P, ctx.stretch, ctx.a_x
+    f, Ab, Bb = out.f, out.A, out.B
+    per = u[0]
+    along = dot(acc, t)
+    diff = tangential - normal
+    for i in range(3):
+        per[i] = normal * acc[i] + diff * along * t[i]
+        f[i] -= stretch * per[i]
+    if not ctx.jac:
+        return
+    # Bb += per t^T + diff ((a.t) I + t a^T) P = per t^T + diff ((a.t) P + t a_perp^T)
+    for i in range(3):
+        for j in range(3):
+            Ab[i, j] += a_x * stretch * ((normal if i == j else 0.0) + diff * t[i] * t[j])
+            Bb[i, j] += per[i] * t[j] + diff * (along * P[i, j] + t[i] * (acc[j] - along * t[j]))
+
+
+SPEC = LoadSpec("added_mass", "full", (("normal", "f8"), ("tangential", "f8")), added_mass_point, AddedMass,
+                scratch=(0, 1))

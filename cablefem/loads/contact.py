@@ -26,9 +26,11 @@ sliding counts as transverse.
 """
 
 import numpy as np
+from numba import njit
 
 from ..geometry.triangulated import TriangulatedSurface
-from . import Terms, add, compose, identity_like, outer, unit_tangent
+from . import LoadSpec, Terms, add, compose, identity_like, outer, unit_tangent
+from ._small import add_matmul, add_outer, dot, unit_divisor
 
 #: |(I - d_P d_P) t| below which the in-plane axial direction q is taken as 0
 DEGENERATE_AXIS = 1e-12
@@ -38,6 +40,8 @@ class SeabedContact:
     """Contact of a line with ``seabed``: stiffness and damping per unit length per element (nel,),
     and optionally a friction law (``IsotropicFriction`` / ``AnisotropicFriction``, see
     ``cablefem.loads.friction.friction_law``)."""
+
+    name = "contact"
 
     def __init__(self, seabed, stiffness, damping, friction=None):
         self.seabed = seabed
@@ -105,6 +109,22 @@ class SeabedContact:
         return terms
 
 
+    def params(self):
+        """The compiled face's parameters per element (``SPEC.params``), each (nel,)."""
+        from .friction import AnisotropicFriction, IsotropicFriction
+
+        law, nel = self.friction, self.stiffness.shape[0]
+        model = ISOTROPIC if isinstance(law, IsotropicFriction) else (
+            ANISOTROPIC if isinstance(law, AnisotropicFriction) else NO_FRICTION)
+        values = {"k": self.stiffness[:, 0], "c": self.damping[:, 0], "model": np.full(nel, model),
+                  "mu": 0.0, "mu_axial": 0.0, "mu_transverse": 0.0, "scale": 1.0, "vc": 1.0}
+        if law is not None:
+            values.update(scale=law.static_scale, vc=law.v_threshold)
+            values.update({"mu": law.mu} if model == ISOTROPIC else
+                          {"mu_axial": law.mu_axial, "mu_transverse": law.mu_transverse})
+        return values
+
+
 def _project(seabed, points, derivatives):
     """The seabed's projection of points (n, 3) [m]; a residual alone needs no derivatives,
     which the triangulated surface can skip (a third of its cost)."""
@@ -125,3 +145,219 @@ def _axis(dr, n):
     safe = np.where(degenerate, np.inf, size)
     return p / safe, safe, t, divisor
 
+
+
+# ---------------------------------------------------------------------------- the compiled face
+#: branches a point's contact may be held on (``hold.contact.bits``, Newton's corrections,
+#: ``cablefem.policy``): friction on its ramp (sticking), the seabed spring acting or not (on:
+#: -k d_G also above the seabed), its damper acting or not
+STICK, DAMPER_ON, DAMPER_OFF, TOUCH_ON, TOUCH_OFF = 1, 2, 4, 8, 16
+DAMPERS, TOUCHES = DAMPER_ON | DAMPER_OFF, TOUCH_ON | TOUCH_OFF
+#: a point's contact state (``state.contact.bits``): in the seabed, its damper acting
+TOUCHING, CLOSING = 1, 2
+#: the friction law in ``p.contact.model``
+NO_FRICTION, ISOTROPIC, ANISOTROPIC = 0, 1, 2
+
+
+@njit(cache=True, _nrt=False)
+def _saturation(w, vc, scale, phi, dphi, stick):
+    """phi(w) and dphi/dw of the saturated-damping law (``friction.saturation``); with ``stick``,
+    of its ramp (the sticking branch) at any speed."""
+    speed = np.sqrt(dot(w, w))
+    ramp = speed < vc or stick
+    gain = scale / vc if ramp else 1.0 / speed
+    for a in range(3):
+        phi[a] = gain * w[a]
+        for b in range(3):
+            dphi[a, b] = (gain if a == b else 0.0) - (0.0 if ramp else w[a] * w[b] / speed ** 3)
+
+
+@njit(cache=True, _nrt=False)
+def contact_point(ctx, p, old, new, state, hold, out, M, u):
+    """The compiled face: the seabed's spring and damper (desire2023 Eq. 11) and friction
+    (Eq. 12; housner2022 Eq. 5-13) at one full point, on the branches ``hold.contact.bits`` holds
+    when ``ctx.held``; ``state.contact``: the contact bits and the slip velocity w (zero off the
+    seabed or without friction). A curved seabed's normal gradient ``ctx.dn`` enters only where
+    ``ctx.curved`` (a plane's is zero). See ``cablefem.kernels`` for the arguments."""
+    c_ = p.contact
+    if not c_.active:
+        return
+    k, c, model, vc = c_.k, c_.c, c_.model, c_.vc
+    gap, n, grad_gap, dn, curved, v, v_x, jac = ctx.gap, ctx.n, ctx.grad_gap, ctx.dn, ctx.curved, ctx.v, ctx.v_x, ctx.jac
+    f, Ab = out.f, out.A
+    bits = hold.contact.bits if ctx.held else 0
+    eye, tmp, dphi, dw_dr, In = M[0], M[1], M[2], M[3], M[4]
+    w, dp_dr, dp_dv, dN = u[0], u[1], u[2], u[3]
+    if jac:
+        for i in range(3):
+            for j in range(3):
+                eye[i, j] = 1.0 if i == j else 0.0
+    touching = gap < 0.0 if (bits & TOUCHES) == 0 else (bits & TOUCH_ON) != 0
+    pressure = -k * gap if touching else 0.0
+    vn = dot(v, n)
+    closing = touching and c > 0.0 and ((bits & DAMPER_ON) != 0 if (bits & DAMPERS) != 0 else vn < 0.0)
+    stick = (bits & STICK) != 0
+    if closing:
+        pressure -= c * vn
+    for i in range(3):
+        f[i] += pressure * n[i]
+    if jac:
+        on = (1.0 if gap <= 0.0 else 0.0) if (bits & TOUCHES) == 0 else (1.0 if touching else 0.0)
+        for j in range(3):
+            dp_dr[j] = -k * on * grad_gap[j]
+            dp_dv[j] = 0.0
+        if closing:
+            for j in range(3):
+                if curved:
+                    dp_dr[j] -= c * (v[0] * dn[0, j] + v[1] * dn[1, j] + v[2] * dn[2, j])
+                dp_dv[j] = -c * n[j]
+            add_outer(Ab, n, dp_dv, -v_x)
+        add_outer(Ab, n, dp_dr, -1.0)
+        if curved:
+            for i in range(3):
+                for j in range(3):
+                    Ab[i, j] -= pressure * dn[i, j]
+    slip = state.contact.slip
+    slip[0], slip[1], slip[2] = 0.0, 0.0, 0.0
+    state.contact.bits = (TOUCHING if touching else 0) | (CLOSING if closing else 0)
+    rubbing = touching and gap < 0.0  # a point held on the seabed's spring above it has no friction
+    if not rubbing or model == NO_FRICTION:
+        return
+    for i in range(3):
+        w[i] = v[i] - vn * n[i]
+        slip[i] = w[i]
+    if model == ISOTROPIC:  # dphi = gain I - ramp_off w w^T / |w|^3, w on the bed
+        mu = c_.mu
+        speed = np.sqrt(dot(w, w))
+        ramp = speed < vc or stick
+        gain = c_.scale / vc if ramp else 1.0 / speed
+        bend = 0.0 if ramp else 1.0 / (speed * speed * speed)
+        for i in range(3):
+            dN[i] = -mu * gain * w[i]
+            f[i] += pressure * dN[i]
+        if jac:
+            # F = p dN(w), w = (I - n n^T) v: Ab -= v_x dF_dw In + dN (dp_dr + v_x dp_dv)^T, and
+            # dF_dw In = -mu p (gain In - bend w w^T) since w is normal to n
+            scale = v_x * mu * pressure
+            for i in range(3):
+                for j in range(3):
+                    Ab[i, j] += scale * ((gain if i == j else 0.0) - gain * n[i] * n[j] - bend * w[i] * w[j]) \
+                        - dN[i] * (dp_dr[j] + v_x * dp_dv[j])
+            if curved:  # dw/dr through the normal's gradient
+                for i in range(3):
+                    for j in range(3):
+                        dphi[i, j] = -mu * pressure * ((gain if i == j else 0.0) - bend * w[i] * w[j])
+                        tmp[i, j] = -(n[i] * v[j] + (vn if i == j else 0.0))
+                dw_dr[:, :] = 0.0
+                add_matmul(dw_dr, tmp, dn, 1.0)
+                add_matmul(Ab, dphi, dw_dr, -1.0)
+    else:
+        _anisotropic(ctx, c_, pressure, vn, stick, eye, In, M, u, out)
+
+
+@njit(cache=True, _nrt=False)
+def _anisotropic(ctx, c_, pressure, vn, stick, eye, In, M, u, out):
+    """Anisotropic friction at a rubbing point (``contact_point``): along the line's direction on the
+    seabed and across it (housner2022 Eq. 5-6), with w = u[0], dp_dr = u[1], dp_dv = u[2], dN = u[3]."""
+    n, dn, v, v_x, t, jac = ctx.n, ctx.dn, ctx.v, ctx.v_x, ctx.t, ctx.jac
+    f, Ab, Bb = out.f, out.A, out.B
+    vc, fscale, mu_a, mu_t = c_.vc, c_.scale, c_.mu_axial, c_.mu_transverse
+    tmp, dphi, dw_dr, dphia, dF_dw, dF_dq, dq_dp, dp_dn, dg = M[1], M[2], M[3], M[5], M[6], M[7], M[8], M[9], M[10]
+    w, dp_dr, dp_dv, dN, phi, phia, q, un, pv, va = u[0], u[1], u[2], u[3], u[4], u[5], u[6], u[7], u[8], u[9]
+    tn = dot(t, n)
+    for i in range(3):
+        pv[i] = t[i] - tn * n[i]
+    size = np.sqrt(dot(pv, pv))
+    if size < DEGENERATE_AXIS:
+        size = np.inf
+        q[:] = 0.0
+    else:
+        for i in range(3):
+            q[i] = pv[i] / size
+    along = dot(w, q)
+    for i in range(3):
+        va[i] = along * q[i]
+        un[i] = w[i] - va[i]  # the transverse velocity
+    _saturation(va, vc, fscale, phia, dphia, stick)
+    _saturation(un, vc, fscale, phi, dphi, stick)
+    for i in range(3):
+        dN[i] = -(mu_a * phia[i] + mu_t * phi[i])
+    for i in range(3):
+        f[i] += pressure * dN[i]
+    if not jac:
+        return
+    # dF/dw = -N (ga q q^T + gt (I - q q^T)); dF/dq = -N (ga - gt)(q w^T + (w.q) I)
+    for i in range(3):
+        for j in range(3):
+            tmp[i, j] = q[i] * q[j]
+    dF_dw[:, :] = 0.0
+    add_matmul(dF_dw, dphia, tmp, -pressure * mu_a)
+    for i in range(3):
+        for j in range(3):
+            tmp[i, j] = eye[i, j] - q[i] * q[j]
+    add_matmul(dF_dw, dphi, tmp, -pressure * mu_t)
+    for i in range(3):
+        for j in range(3):
+            tmp[i, j] = q[i] * w[j] + (along if i == j else 0.0)
+    dF_dq[:, :] = 0.0
+    add_matmul(dF_dq, dphia, tmp, -pressure * mu_a)
+    add_matmul(dF_dq, dphi, tmp, pressure * mu_t)
+    for i in range(3):
+        for j in range(3):
+            In[i, j] = eye[i, j] - n[i] * n[j]
+            tmp[i, j] = -(n[i] * v[j] + (vn if i == j else 0.0))
+    dw_dr[:, :] = 0.0
+    add_matmul(dw_dr, tmp, dn, 1.0)
+    add_matmul(Ab, dF_dw, dw_dr, -1.0)
+    add_outer(Ab, dN, dp_dr, -1.0)
+    add_matmul(Ab, dF_dw, In, -v_x)
+    add_outer(Ab, dN, dp_dv, -v_x)
+    if size < np.inf:
+        for i in range(3):
+            for j in range(3):
+                dq_dp[i, j] = (eye[i, j] - q[i] * q[j]) / size
+        tmp[:, :] = 0.0
+        add_matmul(tmp, dq_dp, In, 1.0 / unit_divisor(ctx.stretch))
+        add_matmul(Bb, dF_dq, tmp, -1.0)
+        tn = dot(n, t)
+        for i in range(3):
+            for j in range(3):
+                dp_dn[i, j] = -(n[i] * t[j] + (tn if i == j else 0.0))
+        tmp[:, :] = 0.0
+        add_matmul(tmp, dp_dn, dn, 1.0)
+        dg[:, :] = 0.0
+        add_matmul(dg, dq_dp, tmp, 1.0)
+        add_matmul(Ab, dF_dq, dg, -1.0)
+
+
+@njit(cache=True, _nrt=False)
+def contact_hold(base, state, hold, p, again):
+    """Hold the branches a rejected Newton step's trial reached at this point (``cablefem.policy``):
+    friction on its ramp where the point slid at the base (|w| >= v_c) and the trial took it, still
+    on the seabed, into the ramp or against its slip; the spring and damper as the trial has them
+    where it put the point on the seabed or lifted it off (a resting point's damper alone switches
+    back and forth); ``again``: also what is held already."""
+    b, s = base.contact, state.contact
+    vc = p.contact.vc
+    before = np.sqrt(dot(b.slip, b.slip))
+    after = np.sqrt(dot(s.slip, s.slip))
+    flag = 0
+    if before >= vc and after > 0.0 and (after < vc or dot(b.slip, s.slip) <= 0.0):
+        flag |= STICK
+    now = s.bits
+    if ((now ^ b.bits) & TOUCHING) != 0:  # not the damper alone: resting points chatter
+        flag |= (TOUCH_ON if (now & TOUCHING) != 0 else TOUCH_OFF) | (DAMPER_ON if (now & CLOSING) != 0 else DAMPER_OFF)
+    held = hold.contact.bits
+    if again:
+        flag |= held if (flag & (TOUCHES | DAMPERS)) == 0 else held & STICK
+    changed = flag != held
+    hold.contact.bits = flag
+    return flag != 0, changed
+
+
+SPEC = LoadSpec("contact", "full",
+                (("k", "f8"), ("c", "f8"), ("model", "i8"), ("mu", "f8"), ("mu_axial", "f8"),
+                 ("mu_transverse", "f8"), ("scale", "f8"), ("vc", "f8")),
+                contact_point, SeabedContact,
+                state=(("bits", "i1"), ("slip", "f8", (3,))), hold=(("bits", "i1"),), hold_rule=contact_hold,
+                scratch=(11, 10))

@@ -31,9 +31,11 @@ still water surface (a fairlead at z = 0 has a vanishing length in air).
 """
 
 import numpy as np
+from numba import njit
 
 from ..errors import InputError
-from . import Terms, compose, identity_like, outer, unit_tangent
+from . import LoadSpec, Terms, compose, identity_like, outer, unit_tangent
+from ._small import dot
 
 
 def tangential_drag_from_moordyn(cd_axial):
@@ -52,6 +54,8 @@ def quadratic(w):
 class Drag:
     """Morison drag: diameter d [m], Cd_normal, Cd_tangential [-] per element (nel,),
     water density rho [kg/m^3] and uniform current U [m/s] (3,)."""
+
+    name = "drag"
 
     def __init__(self, diameter, Cd_normal, Cd_tangential, water_density, current=(0.0, 0.0, 0.0)):
         current = np.asarray(current, dtype=float)
@@ -91,3 +95,49 @@ class Drag:
         terms.force_dr = outer(per_stretched, t) + compose(dh_dt, normal_projector)
         return terms
 
+
+    def params(self):
+        """The compiled face's parameters per element (``SPEC.params``), each (nel,) or (nel, 3)."""
+        nel = self.normal.shape[0]
+        return {"normal": self.normal[:, 0], "tangential": self.tangential[:, 0],
+                "current": np.tile(self.current.ravel(), (nel, 1))}
+
+
+@njit(cache=True, _nrt=False)
+def drag_point(ctx, p, old, new, state, hold, out, M, u):
+    """The compiled face: Morison drag on the velocity relative to the current at one full point
+    (see ``cablefem.kernels``; ``ctx.P``, the normal projector, is set when a tangent is)."""
+    d = p.drag
+    normal, tangential = d.normal, d.tangential
+    if not d.active or not (normal > 0.0 or tangential > 0.0):
+        return
+    v, t, P, stretch, v_x = ctx.v, ctx.t, ctx.P, ctx.stretch, ctx.v_x
+    f, Ab, Bb = out.f, out.A, out.B
+    w, un, per = u[0], u[1], u[2]
+    current = d.current
+    w[0], w[1], w[2] = current[0] - v[0], current[1] - v[1], current[2] - v[2]  # u
+    along = dot(w, t)
+    for i in range(3):
+        un[i] = w[i] - along * t[i]
+    speed = np.sqrt(dot(un, un))
+    for i in range(3):
+        per[i] = normal * speed * un[i] + tangential * abs(along) * along * t[i]
+        f[i] += stretch * per[i]
+    if not ctx.jac:
+        return
+    # with dg = Dn (|un| I + un un^T / |un|), and P un = un, t^T un = 0:
+    # A -= v_x f_v: Ab += v_x |r'| (dg P + 2 Dt |u.t| t t^T), dg P = Dn (|un| P + un un^T / |un|)
+    # B -= f_dr: Bb -= per t^T + dF_dw P, dF_dw P = -Dn (|un| t un^T + (u.t)(|un| P + un un^T / |un|))
+    #                                               + Dt |u.t| (2 t un^T + (u.t) P)
+    inverse = 1.0 / speed if speed > 0.0 else 0.0
+    axial = tangential * abs(along)
+    for i in range(3):
+        for j in range(3):
+            dgP = normal * (speed * P[i, j] + un[i] * un[j] * inverse)
+            Ab[i, j] += v_x * stretch * (dgP + 2.0 * axial * t[i] * t[j])
+            Bb[i, j] += normal * speed * t[i] * un[j] + along * dgP \
+                - axial * (2.0 * t[i] * un[j] + along * P[i, j]) - per[i] * t[j]
+
+
+SPEC = LoadSpec("drag", "full", (("normal", "f8"), ("tangential", "f8"), ("current", "f8", (3,))), drag_point, Drag,
+                scratch=(0, 3))

@@ -21,8 +21,9 @@ above z = d/2 none, as before.
 import math
 
 import numpy as np
+from numba import njit
 
-from . import Terms
+from . import LoadSpec, Terms
 
 
 def submerged_fraction(z, diameter):
@@ -49,6 +50,8 @@ def submerged_integral(z, diameter):
 class Weight:
     """Mass [kg/m] and volume-equivalent area [m^2] per element (nel,), water density, gravity."""
 
+    name = "weight"
+
     def __init__(self, mass, area, water_density, gravity):
         self.dry = np.asarray(mass, dtype=float)[:, None] * gravity
         area = np.asarray(area, dtype=float)[:, None]
@@ -70,3 +73,36 @@ class Weight:
         """Potential energy density [J/m] (nel, nq): dry weight x z minus buoyancy x G(z)."""
         z = state.r[2]
         return self.dry * z - self.buoyancy * submerged_integral(z, self.diameter)
+
+    def params(self):
+        """The compiled face's parameters per element (``SPEC.params``), each (nel,)."""
+        return {"dry": self.dry[:, 0], "buoyancy": self.buoyancy[:, 0], "diameter": self.diameter[:, 0]}
+
+
+@njit(cache=True, _nrt=False)
+def submerged_point(z, diameter):
+    """Submerged fraction of the cross-section centred at height z and d/dz of it
+    (``submerged_fraction`` at one point)."""
+    if z <= -0.5 * diameter:
+        return 1.0, 0.0
+    if z >= 0.5 * diameter:
+        return 0.0, 0.0
+    h = 0.5 * diameter - z
+    theta = 2.0 * np.arccos(min(max(1.0 - 2.0 * h / diameter, -1.0), 1.0))
+    width = 8.0 * np.sqrt(max(h * (diameter - h), 0.0)) / (np.pi * diameter * diameter)
+    return (theta - np.sin(theta)) / (2.0 * np.pi), -width
+
+
+@njit(cache=True, _nrt=False)
+def weight_point(ctx, p, old, new, state, hold, out, M, u):
+    """The compiled face: weight and buoyancy at one point (see ``cablefem.kernels``)."""
+    w = p.weight
+    if not w.active:
+        return
+    submerged, slope = submerged_point(ctx.r[2], w.diameter)
+    out.f[2] += -(w.dry - w.buoyancy * submerged)
+    if ctx.jac:
+        out.A[2, 2] += -w.buoyancy * slope
+
+
+SPEC = LoadSpec("weight", "full", (("dry", "f8"), ("buoyancy", "f8"), ("diameter", "f8")), weight_point, Weight)

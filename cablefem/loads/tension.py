@@ -14,8 +14,10 @@ e); statics starts with it, see ``cablefem.statics``.
 """
 
 import numpy as np
+from numba import njit
 
-from . import Terms, identity_like, outer, unit_tangent
+from . import LoadSpec, Terms, identity_like, outer, unit_tangent
+from ._small import unit_divisor
 
 #: tangent stiffness of a slack element, as a fraction of EA
 SLACK_STIFFNESS = 1e-6
@@ -44,6 +46,7 @@ class Tension:
     membrane locking of curved elements of a stiff line (``cablefem.fem.LineFEM``).
     """
 
+    name = "tension"
     rule = "reduced"
 
     def __init__(self, EA, beta=None, compression=False):
@@ -80,3 +83,58 @@ class Tension:
         e, _ = strain(state.dr)
         stretched = e if self.compression else np.maximum(e, 0.0)
         return 0.5 * self.EA * stretched**2
+
+    def params(self):
+        """The compiled face's parameters per element (``SPEC.params``), each (nel,); ``pushes``: the
+        line may push (``compression``), read when a kernel is built."""
+        nel = self.EA.shape[0]
+        beta = np.zeros(nel) if self.beta is None else self.beta[:, 0]
+        return {"EA": self.EA[:, 0], "beta": beta, "pushes": np.full(nel, self.compression)}
+
+
+@njit(cache=True, _nrt=False)
+def tension_point(ctx, p, old, new, state, hold, out, M, u):
+    """The compiled face: the flux N = T t at one reduced point and D = N_dr + v_x N_dv, with the
+    line pulling and pushing where Newton's taut correction holds it (``hold.tension.pull``);
+    ``state.tension.taut``: whether the point is taut (see ``cablefem.kernels``)."""
+    q = p.tension
+    if not q.active:
+        return
+    dr, dv, N, D = ctx.dr, ctx.dv, out.N, out.D
+    EA, beta, v_x = q.EA, q.beta, ctx.v_x
+    stretch = np.sqrt(dr[0] * dr[0] + dr[1] * dr[1] + dr[2] * dr[2])
+    divisor = unit_divisor(stretch)
+    t0, t1, t2 = dr[0] / divisor, dr[1] / divisor, dr[2] / divisor
+    e = stretch - 1.0
+    rate = t0 * dv[0] + t1 * dv[1] + t2 * dv[2]
+    T = EA * (e + beta * rate)
+    active = q.pushes or (ctx.held and hold.tension.pull) or (e > 0.0 and T > 0.0)
+    if not active:
+        T = 0.0
+    N[0] += T * t0
+    N[1] += T * t1
+    N[2] += T * t2
+    if ctx.jac:
+        t = (t0, t1, t2)
+        on = 1.0 if active else 0.0
+        for i in range(3):
+            for j in range(3):
+                dT = EA * on * t[j] + EA * beta * on * (dv[j] - rate * t[j]) / divisor
+                delta = 1.0 if i == j else 0.0
+                D[i, j] += t[i] * dT + (T / divisor) * (delta - t[i] * t[j]) \
+                    + SLACK_STIFFNESS * EA * (1.0 - on) * delta + v_x * EA * beta * on * t[i] * t[j]
+    state.tension.taut = e > 0.0 and T > 0.0
+
+
+@njit(cache=True, _nrt=False)
+def tension_hold(base, state, hold, p, again):
+    """Hold the taut branch where the trial pulled a point slack at the base taut (and, ``again``,
+    where it is held already): Newton's taut correction (``cablefem.policy``)."""
+    flag = (state.tension.taut and not base.tension.taut) or (again and hold.tension.pull)
+    changed = flag != hold.tension.pull
+    hold.tension.pull = flag
+    return flag, changed
+
+
+SPEC = LoadSpec("tension", "reduced", (("EA", "f8"), ("beta", "f8"), ("pushes", "?")), tension_point, Tension,
+                state=(("taut", "?"),), hold=(("pull", "?"),), hold_rule=tension_hold)

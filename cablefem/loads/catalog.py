@@ -1,0 +1,93 @@
+"""The catalog of loads: every physical load of cablefem, in one list, and the record layouts built
+from it (docs/architecture.md, "Adding a load").
+
+Each load lives in one module with its two faces: the numpy reference (a class with
+``evaluate(state, jacobian) -> Terms``, assembled through scikit-fem's forms) and the compiled
+point kernel (numba), and describes itself in a ``LoadSpec``: its name, the quadrature rule it is
+evaluated at, the parameters its kernel reads per element, the branch state it writes per point
+and the branch holds it reads (Newton's corrections, ``cablefem.policy``), its history per point
+(committed on accepted steps), and its scratch. The system (``cablefem.system``), the compiled
+evaluation (``cablefem.kernels``) and the compiled steps all build their load set, parameter
+records, per-point records and scratch from this list by name: a kernel reads ``p.drag.normal``
+from the element's record, never a column number.
+
+``CATALOG`` order is the order the loads add their forces at a point (the compiled and the
+reference faces sum in the same order).
+"""
+
+import numpy as np
+
+#: the placeholder field of a record no load writes (numpy records need one field at least)
+EMPTY = (("unused", "?"),)
+
+
+def _default():
+    from . import added_mass, contact, drag, gravity, tension
+
+    return [tension.SPEC, gravity.SPEC, contact.SPEC, drag.SPEC, added_mass.SPEC]
+
+
+CATALOG = _default()
+_frozen = []  # the Layout once the compiled kernels were built from it
+
+
+def register(spec):
+    """Add a load to the catalog. Only before the compiled kernels are built (the first import of
+    ``cablefem.kernels``): they are compiled for one catalog, and numba caches them on disk."""
+    if _frozen:
+        raise RuntimeError(f"cannot register load '{spec.name}': the compiled kernels were built from "
+                           "the catalog already; register loads before anything compiles "
+                           "(see docs/architecture.md)")
+    if any(existing.name == spec.name for existing in CATALOG):
+        raise ValueError(f"a load named '{spec.name}' is in the catalog already")
+    CATALOG.append(spec)
+
+
+def spec(name):
+    """The catalog's ``LoadSpec`` of ``name``; KeyError naming the known loads otherwise."""
+    for entry in CATALOG:
+        if entry.name == name:
+            return entry
+    raise KeyError(f"no load '{name}' in the catalog ({', '.join(s.name for s in CATALOG)})")
+
+
+def spec_of(load):
+    """The ``LoadSpec`` of a numpy load object; a clear error for a load with no compiled face."""
+    for entry in CATALOG:
+        if isinstance(load, entry.reference):
+            return entry
+    raise TypeError(f"{type(load).__name__} is not in the load catalog (cablefem.loads.catalog): every "
+                    "load needs a compiled face and one catalog line (docs/architecture.md)")
+
+
+def _record(parts):
+    """A nested, aligned record dtype from (name, fields) pairs, the empty ones left out."""
+    fields = [(name, np.dtype(list(entries), align=True)) for name, entries in parts if entries]
+    return np.dtype(fields or list(EMPTY), align=True)
+
+
+class Layout:
+    """Record dtypes and kernel tuples of a catalog (``layout``)."""
+
+    def __init__(self, catalog):
+        self.specs = tuple(catalog)
+        self.params = _record((s.name, (("active", "?"),) + tuple(s.params)) for s in self.specs)
+        self.full = tuple(s for s in self.specs if s.rule == "full")
+        self.reduced = tuple(s for s in self.specs if s.rule == "reduced")
+        for rule, specs in (("full", self.full), ("reduced", self.reduced)):
+            for kind in ("state", "hold", "history"):
+                setattr(self, f"{rule}_{kind}", _record((s.name, getattr(s, kind)) for s in specs))
+        self.full_kernels = tuple(s.kernel for s in self.full)
+        self.reduced_kernels = tuple(s.kernel for s in self.reduced)
+        self.full_rules = tuple(s.hold_rule for s in self.full if s.hold_rule is not None)
+        self.reduced_rules = tuple(s.hold_rule for s in self.reduced if s.hold_rule is not None)
+        self.matrices = max([s.scratch[0] for s in self.specs] + [1])
+        self.vectors = max([s.scratch[1] for s in self.specs] + [1])
+        self.has_history = any(s.history for s in self.specs)
+
+
+def layout():
+    """The Layout of the catalog, which freezes it (``register`` refuses from then on)."""
+    if not _frozen:
+        _frozen.append(Layout(CATALOG))
+    return _frozen[0]
