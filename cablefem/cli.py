@@ -112,8 +112,11 @@ def cmd_run(args):
 
 def cmd_plot(args):
     """``cablefem plot OUT [--png FILE]``."""
+    from .io.output import prepare_file
     from .post import plot_tensions
 
+    if args.png:
+        prepare_file(args.png)
     path = plot_tensions(args.out, args.png)
     print(f"wrote {path}")
 

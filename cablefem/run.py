@@ -180,15 +180,18 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
 
 def _advance(scene, integrators, outputs, step_control, tracker, duration, dt):
     """March every line to ``duration`` [s], writing a row of tensions.csv per step (a batch per
-    output interval) and a VTK frame every ``output.every`` [s]."""
+    output interval) and a VTK frame every ``output.every`` [s]. Ctrl-C and SIGTERM take effect
+    between output intervals (``deferred_signals``; a compiled march does not see them sooner
+    anyway), so that the rows and frames always hold every step taken."""
     solver, frames, table, bar = scene.solver, outputs["frames"], outputs["table"], outputs["bar"]
     samplers = [LineSampler(integ.system) for integ in integrators]  # the frames' points, once
     every = scene.output.every if solver.adaptive else max(scene.output.every, dt)
-    frame = 0  # frames fall at frame * every, not at a sum of steps carrying round-off
     near = 1e-6 * dt  # times closer than this are the same time
-    t = integrators[0].t
-    rows = [(t, [integ.reactions() for integ in integrators])]
-    while True:
+    frame = 0  # frames fall at frame * every, not at a sum of steps carrying round-off
+
+    def record(rows):
+        """Write the rows (t, forces) and, if one is due, a frame; the time [s] of the last row."""
+        nonlocal frame
         table.write([_row(t, forces) for t, forces in rows])
         for t, forces in rows:
             tracker.update(t, forces)
@@ -196,16 +199,20 @@ def _advance(scene, integrators, outputs, step_control, tracker, duration, dt):
             frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V, sampler=sampler)
                                            for i, sampler in zip(integrators, samplers)]))
             frame = int(np.floor((t + near) / every)) + 1
-        if t >= duration - near:
-            break
-        stop = min(duration, frame * every)
-        if solver.adaptive:
-            step_control.advance(integrators, stop - t)
-            rows = [(integrators[0].t, [integ.reactions() for integ in integrators])]
-        else:  # fixed steps to the next output time, each line in one call
-            rows = _march(integrators, step_control.times(t, stop), table)
-        if bar is not None:
-            bar.update(rows[-1][0] - t)
+        return t
+
+    t = record([(integrators[0].t, [integ.reactions() for integ in integrators])])
+    while t < duration - near:
+        with deferred_signals():
+            stop = min(duration, frame * every)
+            if solver.adaptive:
+                step_control.advance(integrators, stop - t)
+                rows = [(integrators[0].t, [integ.reactions() for integ in integrators])]
+            else:  # fixed steps to the next output time, each line in one call
+                rows = _march(integrators, step_control.times(t, stop), table)
+            if bar is not None:
+                bar.update(rows[-1][0] - t)
+            t = record(rows)
 
 
 def _finish(summary, status, integrators, outputs, step_control, tracker, start, out_dir, reraise):
@@ -226,7 +233,7 @@ def _finish(summary, status, integrators, outputs, step_control, tracker, start,
         summary.update({
             "status": status, "completed": status == "completed",
             "simulated_time_s": integrators[0].t if integrators else 0.0,
-            "frames": len(outputs["frames"].frames) if "frames" in outputs else 0,
+            "frames": outputs["frames"].listed if "frames" in outputs else 0,
             "wall_time_s": time.perf_counter() - start,
             "steps": sum(s["steps"] for s in stats),
             "newton_iterations": sum(s["newton_iterations"] for s in stats),

@@ -93,7 +93,9 @@ def check_run(scene, duration=None, dt=None):
     dt = solver.dt if dt is None else dt
     steps = duration / dt
     if not steps <= MAX_STEPS:
-        raise _error(scene, dt_key, f"{duration:g} s in steps of {dt:g} s make {steps:.3g} steps, beyond the "
+        default = type(solver)()  # blame the value farther from its default
+        longer, finer = duration / default.duration, default.dt / dt
+        raise _error(scene, duration_key if longer > finer else dt_key, f"{duration:g} s in steps of {dt:g} s make {steps:.3g} steps, beyond the "
                       f"sane limit of {MAX_STEPS:g} (~5 us per node and step: days of wall time)")
     every = scene.output.every if solver.adaptive else max(scene.output.every, dt)
     frames = duration / every
@@ -204,5 +206,5 @@ def _check_pace(scene, motion):
         total = value + ramped
         if not total <= bound:
             raise _error(scene, "motion.ramp" if ramped > value else key,
-                         f"moves the fairlead at a {quantity} of up to {total:.3g} {unit}, beyond the sane "
+                         f"the fairlead's peak {quantity} would reach {total:.3g} {unit}, beyond the sane "
                          f"limit of {bound:g} {unit} ({why})")

@@ -262,17 +262,17 @@ def raise_on_sigterm():
 
 @contextlib.contextmanager
 def deferred_signals(reraise=True):
-    """Hold SIGINT and SIGTERM while the block runs (files being closed): a signal that comes is
+    """Hold SIGINT and SIGTERM while the block runs (files being written): a signal that comes is
     recorded and, with ``reraise``, raised when the block has finished (as KeyboardInterrupt or
-    Terminated)."""
+    Terminated). Only signals that raise in Python are held: one ignored, or left to the
+    operating system (SIGTERM outside the command), stays as it is."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
     caught = []
     previous = {}
     for sig in (signal.SIGINT, signal.SIGTERM):
-        handler = signal.getsignal(sig)
-        if handler is not None:  # None: set outside Python, leave it be
+        if callable(signal.getsignal(sig)):
             previous[sig] = signal.signal(sig, lambda signum, frame: caught.append(signum))
     try:
         yield

@@ -87,6 +87,8 @@ def parse_toml(path):
         raise InputError(f"not valid TOML: {v.one_line(error)}") from None
     except UnicodeDecodeError:
         raise InputError("not valid TOML: not UTF-8 text") from None
+    except RecursionError:
+        raise InputError("not valid TOML: arrays or tables nested too deeply") from None
 
 
 def read_toml_scene(path, data=None):

@@ -157,7 +157,8 @@ def limited(converter, quantity):
         for k, item in enumerate(value if isinstance(value, tuple) else (value,)):
             if abs(item) > bound:
                 where = f"{key}[{k}]" if isinstance(value, tuple) else key
-                raise InputError(f"{item:g} {unit} is beyond the sane limit of {bound:g} {unit}"
+                shown = [f"{x}" if isinstance(x, int) else f"{x:g}" for x in (item, bound)]
+                raise InputError(f"{shown[0]} {unit} is beyond the sane limit of {shown[1]} {unit}"
                                  f" ({why})".replace("  ", " "), key=where)
         return value
     return convert

@@ -63,6 +63,7 @@ class TimeSeriesWriter:
         self.refresh = refresh
         self.every_frame = every_frame
         self.frames = []  # (time, file name)
+        self.listed = 0  # how many of them the collection on disk lists
         self._rows = bytearray()  # their lines in the collection, formatted once
         os.makedirs(folder, exist_ok=True)
         self.path = inside(folder, f"{name}.pvd")
@@ -86,6 +87,7 @@ class TimeSeriesWriter:
 
     def _write_collection(self):
         self._collection.write([self.HEAD, bytes(self._rows), self.TAIL])
+        self.listed = len(self.frames)
         self._written = time.monotonic()
 
 
