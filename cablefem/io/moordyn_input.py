@@ -2,8 +2,10 @@
 
 Sections read: LINE TYPES, POINTS, LINES, OPTIONS (value first: ``850 WtrDpth``)
 and OUTPUTS (channel names, up to ``END``, recorded and ignored). Rows before
-the first recognised ``---`` header are the title. RODS, BODIES, ROD TYPES,
-FAILURE or any unrecognised section that holds rows is refused by name.
+the first recognised ``---`` header are the title (``moordyn_sections`` cuts the
+file). RODS, BODIES, ROD TYPES, FAILURE or any unrecognised section that holds
+rows is refused by name. Numbers and IDs are ASCII (``str.isdigit`` and ``float``
+would take other scripts' digits) and within the sane limits of ``validate.LIMITS``.
 
 Mapping (each conversion checked against the MoorDyn 2.7 library, docs/scene.md):
 - every chain of MoorDyn lines joined through massless free points that join
@@ -34,27 +36,8 @@ from ..geometry.readers import is_integer, is_number, parse_number
 from ..line import Line, LineType, Segment
 from ..scene import Contact, Environment, Friction, Scene, Solver
 from . import validate as v
+from .moordyn_sections import TABLE_COLUMNS, at as _at, parse_sections, split_sections
 
-#: header keywords (upper case) -> section, tried in this order as MoorDyn does
-SECTION_KEYWORDS = (
-    (("LINE DICTIONARY", "LINE TYPES"), "LINE TYPES"),
-    (("ROD DICTIONARY", "ROD TYPES"), "ROD TYPES"),
-    (("BODIES", "BODY LIST", "BODY PROPERTIES"), "BODIES"),
-    (("RODS", "ROD LIST", "ROD PROPERTIES"), "RODS"),
-    (("POINTS", "POINT LIST", "POINT PROPERTIES", "CONNECTION PROPERTIES", "NODE PROPERTIES"), "POINTS"),
-    (("LINES", "LINE LIST", "LINE PROPERTIES"), "LINES"),
-    (("FAILURE",), "FAILURE"),
-    (("OPTIONS",), "OPTIONS"),
-    (("OUTPUT",), "OUTPUTS"),
-)
-TABLE_COLUMNS = {
-    "LINE TYPES": ("Name", "Diam", "MassDen", "EA", "BA/-zeta", "EI", "Cd", "Ca", "CdAx", "CaAx"),
-    "POINTS": ("ID", "Attachment", "X", "Y", "Z", "M", "V", "CdA", "CA"),
-    "LINES": ("ID", "LineType", "AttachA", "AttachB", "UnstrLen", "NumSegs"),
-}
-#: column names that only MoorDyn v1 tables have (their columns are in another order)
-V1_COLUMNS = {"LINE TYPES": {"CAN", "CAT", "CDN", "CDT"}, "POINTS": {"FX", "FY", "FZ"},
-              "LINES": {"NODEANCH", "NODEFAIR"}}
 FIXED = ("ANCHOR", "FIXED", "FIX")
 COUPLED = ("VESSEL", "VES", "COUPLED", "CPLD", "FAIRLEAD")
 FREE = ("CONNECT", "CON", "FREE")
@@ -79,75 +62,12 @@ _COORDINATE = v.limited(v.number, "coordinate")
 _WHOLE = re.compile(r"-?[0-9]+")  # ASCII digits only: str.isdigit() takes '\u00b2', which int() refuses
 
 
-def _at(number, key):
-    """The key of a row: 'line <number>: <key>'."""
-    return f"line {number}: {key}"
-
-
 def _value(token, number, key, check=v.number):
     """A checked number from a file token; the error names the file line and the column."""
     value = parse_number(token)
     if value is None:
         raise InputError(f"expected a number, got '{token}'", key=_at(number, key))
     return check(value, _at(number, key))
-
-
-def split_sections(text):
-    """[(section or None, header text, line number, [(line number, fields)])] of a MoorDyn file."""
-    sections, current = [], None
-    for number, raw in enumerate(text.splitlines(), start=1):
-        row = raw.strip()
-        if not row:
-            continue
-        if "---" in row:
-            title = " ".join(row.replace("-", " ").split()).upper()
-            name = next((section for keys, section in SECTION_KEYWORDS
-                         if any(key in title for key in keys)), None)
-            current = (name, title, number, [])
-            sections.append(current)
-        elif row.upper() == "END":
-            break
-        elif current is not None:
-            current[3].append((number, row.split()))
-    return sections
-
-
-def _table_rows(section, rows):
-    """Data rows of a table section: up to two leading column-name/unit rows are dropped."""
-    skipped = 0
-    while skipped < min(2, len(rows)) and not any(is_number(f) for f in rows[skipped][1]):
-        number, fields = rows[skipped]
-        if V1_COLUMNS[section] & {f.upper() for f in fields}:
-            raise InputError(f"MoorDyn v1 columns ({' '.join(fields)}) are not supported; write the v2 "
-                             f"columns {' '.join(TABLE_COLUMNS[section])}", key=_at(number, section))
-        skipped += 1
-    columns = TABLE_COLUMNS[section]
-    for number, fields in rows[skipped:]:
-        if len(fields) < len(columns):
-            raise InputError(f"expected {len(columns)} columns ({' '.join(columns)}), got {len(fields)}",
-                             key=_at(number, section))
-    return rows[skipped:]
-
-
-def parse_sections(sections):
-    """Raw tables of a split file: (line types, points, lines, options, outputs)."""
-    found = {"LINE TYPES": [], "POINTS": [], "LINES": [], "OPTIONS": [], "OUTPUTS": []}
-    recognised = False
-    for name, title, number, rows in sections:
-        if name is None:
-            data = [r for r in rows if sum(is_number(f) for f in r[1]) >= 2]
-            if recognised and data:
-                raise InputError("unrecognised section (cablefem reads LINE TYPES, POINTS, LINES, OPTIONS, "
-                                 "OUTPUTS)", key=_at(number, title))
-            continue
-        recognised = True
-        if name in ("LINE TYPES", "POINTS", "LINES"):
-            found[name] += _table_rows(name, rows)
-        elif name in ("OPTIONS", "OUTPUTS"):
-            found[name] += rows
-        elif any(sum(is_number(f) for f in fields) >= 1 for _, fields in rows):
-            raise InputError("not supported yet", key=_at(number, name))
-    return found
 
 
 def _line_types(rows, notes):
