@@ -143,7 +143,8 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
     duration = float(solver.duration if duration is None else duration)
     dt = float(solver.dt if dt is None else dt)
     out_dir = prepare_folder(out_dir or scene.output.dir)
-    remove_partials(out_dir, (scene.name, "seabed.vtu", "tensions.csv", "summary.json"))
+    remove_partials(out_dir, (f"{scene.name}_", f"{scene.name}.pvd", "seabed.vtu", "tensions.csv",
+                              "summary.json"))
     start = time.perf_counter()
     summary = {"scene": scene.name, "seabed": scene.seabed.describe(),
                "notes": list(scene.notes) + setting_warnings(scene, dt), "dt": dt, "duration": duration}

@@ -143,11 +143,13 @@ def test_output_onto_a_file_leaves_the_file_alone(tmp_path, capsys):
 def test_an_unwritable_output_folder_is_refused_before_any_work():
     """Checked by writing, not by the permission bits (root ignores them): run as nobody when root,
     in a folder nobody can read (pytest's own are private to their owner)."""
+    import importlib
     import shutil
     import tempfile
 
-    import cablefem.run  # noqa: F401 - imported while the installation can be read
     from cablefem.scene import load_scene
+
+    importlib.import_module("cablefem.run")  # while the installation can still be read
 
     folder = tempfile.mkdtemp(prefix="cablefem-locked-")
     out = os.path.join(folder, "locked")
