@@ -1,17 +1,20 @@
 """The ``cablefem`` command (DESIGN.md, "Interfaces that users rely on").
 
-User errors (bad scene, unreadable file) print one line naming the file, the
-key and the reason and exit with status 2; a solver that does not converge
-prints its residual and exits with status 3. Output files are written whole
-or not at all.
+User errors (bad scene, unreadable file, an output folder that cannot be
+written) print one line naming the file, the key and the reason and exit with
+status 2; a solver that does not converge prints its residual and exits with
+status 3. Output files are written whole or not at all. Ctrl-C (SIGINT) and
+SIGTERM stop a run the same way, leaving its outputs closed and a summary
+saying "interrupted"; the exit status is then 130 or 143 (128 + the signal).
 """
 
 import argparse
 import json
 import os
+import signal
 import sys
-import tempfile
 import time
+import traceback
 
 from .errors import ConvergenceError, InputError
 
@@ -23,17 +26,12 @@ def _load(path):
 
 
 def write_json(path, data):
-    """Write ``data`` as JSON to ``path`` atomically (a temporary file renamed into place)."""
-    folder = os.path.dirname(os.path.abspath(path))
-    os.makedirs(folder, exist_ok=True)
-    handle, tmp = tempfile.mkstemp(dir=folder, prefix=".cablefem-", suffix=".json")
-    try:
-        with os.fdopen(handle, "w") as out:
-            json.dump(data, out, indent=1)
-        os.replace(tmp, path)
-    except BaseException:
-        os.unlink(tmp)
-        raise
+    """Write ``data`` as JSON to ``path`` atomically (a temporary file renamed into place), its
+    folder made if missing; OutputError if it cannot be written."""
+    from .io.output import prepare_file, write_atomic
+
+    prepare_file(path)
+    write_atomic(path, json.dumps(data, indent=1))
 
 
 def solve_scene_static(scene):
@@ -56,8 +54,12 @@ def solve_scene_static(scene):
 
 def cmd_static(args):
     """``cablefem static [SCENE] [--json FILE]``."""
+    from .io.output import prepare_file
+
     start = time.perf_counter()
     scene = _load(args.scene)
+    if args.json:
+        prepare_file(args.json)  # before the work: a --json that cannot be written fails now
     reports, iterations, results = solve_scene_static(scene)
     wall = time.perf_counter() - start
     print(f"scene {scene.name}: seabed {scene.seabed.describe()}")
@@ -85,13 +87,17 @@ def cmd_static(args):
 
 def cmd_run(args):
     """``cablefem run [SCENE] [--out DIR] [--duration T] [--dt DT]``."""
+    from .io.checks import check_run
+    from .io.output import prepare_folder
     from .run import run_scene, setting_warnings
 
     scene = _load(args.scene)
     for value, key in ((args.duration, "--duration"), (args.dt, "--dt")):
         if value is not None and not (value > 0 and value < float("inf")):
             raise InputError(f"must be a number > 0, got {value}", key=key)
+    check_run(scene, args.duration, args.dt)
     out = args.out or scene.output.dir
+    prepare_folder(out)
     print(f"scene {scene.name}: seabed {scene.seabed.describe()}; writing to {out}")
     for note in scene.notes:
         print(f"  note: {note}")
@@ -107,15 +113,18 @@ def cmd_run(args):
 
 def cmd_plot(args):
     """``cablefem plot OUT [--png FILE]``."""
+    from .io.output import prepare_file
     from .post import plot_tensions
 
+    if args.png:
+        prepare_file(args.png)
     path = plot_tensions(args.out, args.png)
     print(f"wrote {path}")
 
 
 def build_parser():
     """The argument parser of the ``cablefem`` command."""
-    parser = argparse.ArgumentParser(prog="cablefem", description=__doc__.splitlines()[0])
+    parser = _Parser(prog="cablefem", description=__doc__.splitlines()[0])
     commands = parser.add_subparsers(dest="command", required=True)
     static = commands.add_parser("static", help="static equilibrium of a scene")
     static.add_argument("scene", nargs="?", help="TOML scene or MoorDyn v2 input file (default: built-in scene)")
@@ -135,20 +144,49 @@ def build_parser():
 
 
 def main(argv=None):
-    """Entry point: parse arguments, run the command, turn user errors into one line."""
+    """Entry point: parse arguments, run the command, turn every failure into one line on stderr
+    and an exit status: 2 bad input or output location, 3 no convergence, 128 + the signal
+    for SIGINT / SIGTERM, 1 a fault of cablefem itself (its traceback with CABLEFEM_DEBUG=1)."""
+    from .io.output import raise_on_sigterm
+
     args = build_parser().parse_args(argv)
+    previous = raise_on_sigterm()
     try:
         args.func(args)
     except InputError as error:
-        print(f"cablefem: error: {error.message()}", file=sys.stderr)
-        return 2
+        return _fail(f"error: {error.message()}", 2)
     except ConvergenceError as error:
-        print(f"cablefem: {error}", file=sys.stderr)
-        return 3
-    except KeyboardInterrupt:
-        print("cablefem: interrupted", file=sys.stderr)
-        return 130
+        return _fail(" ".join(str(error).split()), 3)
+    except KeyboardInterrupt as error:
+        signum = getattr(error, "signum", signal.SIGINT)
+        return _fail(f"interrupted ({signal.Signals(signum).name})", 128 + signum)
+    except OSError as error:  # an input or output file the checks could not foresee
+        where = f"{error.filename}: " if error.filename else ""
+        return _fail(f"error: {where}{error.strerror or error}", 2)
+    except Exception as error:  # noqa: BLE001 - a bug: one line, the traceback on request
+        if os.environ.get("CABLEFEM_DEBUG"):
+            traceback.print_exc()
+        return _fail(f"internal error: {type(error).__name__}: {' '.join(str(error).split())} "
+                     "(CABLEFEM_DEBUG=1 shows the traceback; please report it)", 1)
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
     return 0
+
+
+def _fail(message, status):
+    """Print ``cablefem: message`` on one line of stderr (control characters escaped, as in
+    ``'\\n'``); return the exit status."""
+    message = "".join(c if c.isprintable() else repr(c)[1:-1] for c in message)
+    print(f"cablefem: {message}", file=sys.stderr)
+    return status
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with its usage errors on one line, exit status 2."""
+
+    def error(self, message):
+        self.exit(2, f"cablefem: error: {' '.join(message.split())} (see {self.prog} --help)\n")
 
 
 if __name__ == "__main__":

@@ -30,3 +30,20 @@ class ConvergenceError(RuntimeError):
         self.residual = residual
         self.iterations = iterations
         super().__init__(message)
+
+
+class OutputError(InputError):
+    """An output location or write that failed (a file where the folder should be, a full disk):
+    a user error like bad input, one line naming the path and the reason."""
+
+    def __init__(self, reason, path):
+        super().__init__(reason, file=path)
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised where Python raises KeyboardInterrupt for SIGINT, so that a run stops the
+    same way for both (``cablefem.io.output.raise_on_sigterm``); ``signum`` is the signal."""
+
+    def __init__(self, signum):
+        self.signum = signum
+        super().__init__(f"signal {signum}")

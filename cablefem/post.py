@@ -18,9 +18,13 @@ def read_tensions(out_dir):
     path = os.path.join(out_dir, "tensions.csv")
     if not os.path.isfile(path):
         raise InputError("no tensions.csv here: is this the output folder of `cablefem run`?", file=out_dir)
-    with open(path, newline="") as handle:
-        rows = list(csv.reader(handle))
-    header, values = rows[0], np.array(rows[1:], dtype=float).reshape(-1, len(rows[0]))
+    try:
+        with open(path, newline="", encoding="utf-8") as handle:
+            rows = list(csv.reader(handle))
+        header, values = rows[0], np.array(rows[1:], dtype=float).reshape(-1, len(rows[0]))
+    except (ValueError, IndexError, csv.Error) as error:  # UnicodeDecodeError is a ValueError
+        reason = " ".join(str(error).split()) or "empty"
+        raise InputError(f"not a tensions table of `cablefem run` ({reason})", file=path) from None
     return {name: values[:, k] for k, name in enumerate(header)}
 
 

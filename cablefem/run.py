@@ -3,22 +3,25 @@
 A run writes DIR/<name>.pvd with one .vtu per output frame, DIR/seabed.vtu,
 DIR/tensions.csv (one row per time step) and DIR/summary.json (DESIGN.md).
 Frames and rows are written while the run goes, so memory does not grow
-with the duration, and a run stopped by Ctrl-C or a solver failure still
-leaves a valid .pvd, the rows computed so far and a summary saying where it
-stopped.
+with the duration, and each is written whole or not at all
+(``cablefem.io.output``): a run stopped by Ctrl-C, SIGTERM, a solver failure
+or a full disk still leaves a valid .pvd listing every complete frame, the
+whole rows computed so far and a summary saying where it stopped; one killed
+outright leaves all of that but the summary.
 """
 
-import csv
 import json
-import os
 import sys
 import time
 
 import numpy as np
 
 from .dynamics import INTEGRATORS, Integrator, integrator_options
-from .errors import ConvergenceError, InputError
-from .io.vtk import TimeSeriesWriter, polyline_mesh, write_atomic
+from .errors import ConvergenceError, InputError, OutputError
+from .io.checks import check_names, check_run
+from .io.output import (RowsFile, deferred_signals, failure as write_failure, inside, prepare_folder,
+                        remove_partials, write_atomic)
+from .io.vtk import TimeSeriesWriter, polyline_mesh
 from .line import Line
 from .motion import fairlead_motion
 from .results import LineSampler, line_fields
@@ -123,61 +126,46 @@ def _bounds(scene, margin=0.1):
 
 
 def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
-    """Run a scene in the time domain and write its outputs; returns the summary dict."""
+    """Run a scene in the time domain and write its outputs; returns the summary dict.
+
+    Before any work: the scene's names and run size are checked (``cablefem.io.checks``) and
+    the output folder is made and probed (``OutputError`` if it cannot be written). Every
+    output is written whole or not at all (``cablefem.io.output``); a run stopped by Ctrl-C,
+    SIGTERM (``raise_on_sigterm``), a solver failure or an output fault still leaves a .pvd
+    listing every complete frame, whole rows of tensions.csv, and a summary.json saying why."""
     from .geometry.export import write_seabed_vtu
 
+    check_names(scene)
+    check_run(scene, duration, dt)
     solver = scene.solver
-    duration = float(solver.duration if duration is None else duration)
-    dt = float(solver.dt if dt is None else dt)
-    out_dir = out_dir or scene.output.dir
-    os.makedirs(out_dir, exist_ok=True)
-    start = time.perf_counter()
-    write_seabed_vtu(scene.seabed, os.path.join(out_dir, "seabed.vtu"), _bounds(scene))
-    integrator_class = INTEGRATORS[solver.integrator]
-    options = integrator_options(solver)
     if solver.adaptive and solver.integrator != "bdf2":
         raise InputError("adaptive steps need integrator = \"bdf2\"", key="solver.adaptive")
-    systems = [build_system(scene, line) for line in scene.lines]
-    states, static_iterations = start_states(scene, systems=systems)
-    integrators = [integrator_class(system, X0, boundary_path(scene, line), dt=dt, **options)
-                   for system, line, X0 in zip(systems, scene.lines, states)]
-    frames = TimeSeriesWriter(out_dir, scene.name)
-    samplers = [LineSampler(integ.system) for integ in integrators]  # the frames' points, once
-    tracker = _Extremes([line.name for line in scene.lines])
+    duration = float(solver.duration if duration is None else duration)
+    dt = float(solver.dt if dt is None else dt)
+    out_dir = prepare_folder(out_dir or scene.output.dir)
+    remove_partials(out_dir, (f"{scene.name}_", f"{scene.name}.pvd", "seabed.vtu", "tensions.csv",
+                              "summary.json"))
+    start = time.perf_counter()
     summary = {"scene": scene.name, "seabed": scene.seabed.describe(),
-               "notes": list(scene.notes) + setting_warnings(scene, dt),
-               "static_newton_iterations": static_iterations, "dt": dt, "duration": duration}
-    bar = _progress(progress, duration)
-    every = scene.output.every if solver.adaptive else max(scene.output.every, dt)
-    frame = 0  # frames fall at frame * every, not at a sum of steps carrying round-off
-    near = 1e-6 * dt  # times closer than this are the same time
-    step_control = StepControl(solver, dt)
-    status = "completed"
+               "notes": list(scene.notes) + setting_warnings(scene, dt), "dt": dt, "duration": duration}
+    integrators, outputs, status = [], {}, "completed"
+    step_control, tracker = StepControl(solver, dt), _Extremes([line.name for line in scene.lines])
     try:
-        with open(os.path.join(out_dir, "tensions.csv"), "w", newline="") as handle:
-            table = csv.writer(handle)
-            table.writerow(_columns(scene))
-            t = integrators[0].t
-            rows = [(t, [integ.reactions() for integ in integrators])]
-            while True:
-                for t, forces in rows:
-                    table.writerow(_row(t, forces))
-                    tracker.update(t, forces)
-                handle.flush()
-                if t >= frame * every - near:
-                    frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V, sampler=sampler)
-                                                   for i, sampler in zip(integrators, samplers)]))
-                    frame = int(np.floor((t + near) / every)) + 1
-                if t >= duration - near:
-                    break
-                stop = min(duration, frame * every)
-                if solver.adaptive:
-                    step_control.advance(integrators, stop - t)
-                    rows = [(integrators[0].t, [integ.reactions() for integ in integrators])]
-                else:  # fixed steps to the next output time, each line in one call
-                    rows = _march(integrators, step_control.times(t, stop), table)
-                if bar is not None:
-                    bar.update(rows[-1][0] - t)
+        seabed_vtu = inside(out_dir, "seabed.vtu")
+        try:
+            write_seabed_vtu(scene.seabed, seabed_vtu, _bounds(scene))
+        except OSError as error:
+            raise write_failure(error, seabed_vtu) from None
+        integrator_class = INTEGRATORS[solver.integrator]
+        options = integrator_options(solver)
+        systems = [build_system(scene, line) for line in scene.lines]
+        states, summary["static_newton_iterations"] = start_states(scene, systems=systems)
+        integrators += [integrator_class(system, X0, boundary_path(scene, line), dt=dt, **options)
+                        for system, line, X0 in zip(systems, scene.lines, states)]
+        outputs["frames"] = TimeSeriesWriter(out_dir, scene.name)
+        outputs["table"] = RowsFile(inside(out_dir, "tensions.csv"), _columns(scene))
+        outputs["bar"] = _progress(progress, duration)
+        _advance(scene, integrators, outputs, step_control, tracker, duration, dt)
     except KeyboardInterrupt:
         status = "interrupted"
         raise
@@ -185,21 +173,80 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
         status = f"stopped: {error}"
         raise
     finally:
-        frames.close()
-        if bar is not None:
-            bar.close()
+        _finish(summary, status, integrators, outputs, step_control, tracker, start, out_dir,
+                reraise=status == "completed")
+    return summary
+
+
+def _advance(scene, integrators, outputs, step_control, tracker, duration, dt):
+    """March every line to ``duration`` [s], writing a row of tensions.csv per step (a batch per
+    output interval) and a VTK frame every ``output.every`` [s]. Ctrl-C and SIGTERM take effect
+    between output intervals (``deferred_signals``; a compiled march does not see them sooner
+    anyway), so that the rows and frames always hold every step taken."""
+    solver, frames, table, bar = scene.solver, outputs["frames"], outputs["table"], outputs["bar"]
+    samplers = [LineSampler(integ.system) for integ in integrators]  # the frames' points, once
+    every = scene.output.every if solver.adaptive else max(scene.output.every, dt)
+    near = 1e-6 * dt  # times closer than this are the same time
+    frame = 0  # frames fall at frame * every, not at a sum of steps carrying round-off
+
+    def record(rows):
+        """Write the rows (t, forces) and, if one is due, a frame; the time [s] of the last row."""
+        nonlocal frame
+        table.write([_row(t, forces) for t, forces in rows])
+        for t, forces in rows:
+            tracker.update(t, forces)
+        if t >= frame * every - near:
+            frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V, sampler=sampler)
+                                           for i, sampler in zip(integrators, samplers)]))
+            frame = int(np.floor((t + near) / every)) + 1
+        return t
+
+    t = record([(integrators[0].t, [integ.reactions() for integ in integrators])])
+    while t < duration - near:
+        with deferred_signals():
+            stop = min(duration, frame * every)
+            if solver.adaptive:
+                step_control.advance(integrators, stop - t)
+                rows = [(integrators[0].t, [integ.reactions() for integ in integrators])]
+            else:  # fixed steps to the next output time, each line in one call
+                rows = _march(integrators, step_control.times(t, stop), table)
+            if bar is not None:
+                bar.update(rows[-1][0] - t)
+            t = record(rows)
+
+
+def _finish(summary, status, integrators, outputs, step_control, tracker, start, out_dir, reraise):
+    """Close the collection and tensions.csv and write summary.json, with SIGINT and SIGTERM held
+    until they are done. A failure to write (a full disk) is raised if nothing else failed
+    (``reraise``), else that other failure is the one reported."""
+    errors = []
+    with deferred_signals(reraise=reraise):
+        for name in ("frames", "table"):
+            if name in outputs:
+                try:
+                    outputs[name].close()
+                except OutputError as error:
+                    errors.append(error)
+        if outputs.get("bar") is not None:
+            outputs["bar"].close()
         stats = [integ.statistics() for integ in integrators]
         summary.update({
             "status": status, "completed": status == "completed",
-            "simulated_time_s": integrators[0].t, "frames": len(frames.frames),
+            "simulated_time_s": integrators[0].t if integrators else 0.0,
+            "frames": outputs["frames"].listed if "frames" in outputs else 0,
             "wall_time_s": time.perf_counter() - start,
             "steps": sum(s["steps"] for s in stats),
             "newton_iterations": sum(s["newton_iterations"] for s in stats),
             "integrator": stats, "tension_extremes": tracker.as_dict(),
             "adaptive": {"accepted": step_control.accepted, "rejected": step_control.rejected}
-            if solver.adaptive else None})
-        write_atomic(os.path.join(out_dir, "summary.json"), json.dumps(summary, indent=1))
-    return summary
+            if step_control.adaptive else None})
+        summary.setdefault("static_newton_iterations", 0)
+        try:
+            write_atomic(inside(out_dir, "summary.json"), json.dumps(summary, indent=1))
+        except OutputError as error:
+            errors.append(error)
+    if errors and reraise:
+        raise errors[0]
 
 
 class StepControl:
@@ -266,8 +313,7 @@ def _march(integrators, times, table):
     except ConvergenceError as error:
         last = len(forces) == len(integrators) - 1  # the lines before it have all the rows
         reached = len(error.forces) if last else 0
-        for k in range(reached):
-            table.writerow(_row(times[k], [f[k] for f in forces + [error.forces]]))
+        table.write([_row(times[k], [f[k] for f in forces + [error.forces]]) for k in range(reached)])
         raise
     return [(tk, [f[k] for f in forces]) for k, tk in enumerate(times)]
 

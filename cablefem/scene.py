@@ -103,7 +103,9 @@ class Output:
 
 @dataclass
 class Scene:
-    """Everything a solve needs. ``notes`` records what was chosen (seabed model, ...)."""
+    """Everything a solve needs. ``notes`` records what was chosen (seabed model, ...);
+    ``keys`` where a scene key (``lines[0].anchor``, ``seabed``) was written when that is not
+    the key itself in ``source``: scene key -> (file, key in that file), for error messages."""
 
     name: str
     lines: list
@@ -117,6 +119,11 @@ class Scene:
     source: str | None = None
     notes: list = field(default_factory=list)
     moordyn_options: dict = field(default_factory=dict)  # raw OPTIONS of a MoorDyn file (name -> text)
+    keys: dict = field(default_factory=dict)
+
+    def where(self, key):
+        """(file, key) naming where scene key ``key`` was written (``Scene.keys``)."""
+        return self.keys.get(key, (self.source, key))
 
 
 #: file extensions read as MoorDyn input files; anything else is tried as TOML first
@@ -129,39 +136,51 @@ def load_scene(path):
     ``.toml`` is TOML and ``.dat``/``.txt``/``.inp``/``.in`` MoorDyn; any
     other file is TOML when it parses as TOML with a scene's tables, MoorDyn
     otherwise. Every error is an InputError naming the file, the key path and
-    the reason on one line.
+    the reason on one line. The scene-level checks of ``cablefem.io.checks`` (names,
+    problem size, ends against water and seabed, the motion's peak strain) run on
+    either kind before the scene is returned.
     """
+    import os
+
+    from .errors import InputError
+    from .io.checks import check_scene
+
+    path = os.fspath(path)
+    try:
+        return check_scene(_read_scene(path))
+    except InputError as error:
+        located = error.within(file=path)
+        raise InputError(" ".join(located.reason.split()), key=located.key, file=located.file) from None
+    except OSError as error:
+        raise InputError(f"cannot read: {error.strerror or error}", file=path) from None
+
+
+def _read_scene(path):
+    """The Scene in the file at ``path`` as its reader gives it (``load_scene`` picks the reader)."""
     import os
 
     from .errors import InputError
     from .io.moordyn_input import read_moordyn
     from .io.toml_scene import TOP_LEVEL_KEYS, parse_toml, read_toml_scene
 
-    path = os.fspath(path)
-    try:
-        if not os.path.exists(path):
-            raise InputError("file not found")
-        if not os.path.isfile(path):
-            raise InputError("not a file")
-        if not os.access(path, os.R_OK):
-            raise InputError("file not readable")
-        extension = os.path.splitext(path)[1].lower()
-        if extension == ".toml":
-            return read_toml_scene(path)
-        if extension in MOORDYN_EXTENSIONS:
-            return read_moordyn(path)
-        try:
-            data = parse_toml(path)
-        except InputError:
-            data = None
-        if data and any(key in data for key in TOP_LEVEL_KEYS):
-            return read_toml_scene(path, data)
+    if not os.path.exists(path):
+        raise InputError("file not found")
+    if not os.path.isfile(path):
+        raise InputError("not a file")
+    if not os.access(path, os.R_OK):
+        raise InputError("file not readable")
+    extension = os.path.splitext(path)[1].lower()
+    if extension == ".toml":
+        return read_toml_scene(path)
+    if extension in MOORDYN_EXTENSIONS:
         return read_moordyn(path)
-    except InputError as error:
-        located = error.within(file=path)
-        raise InputError(" ".join(located.reason.split()), key=located.key, file=located.file) from None
-    except OSError as error:
-        raise InputError(f"cannot read: {error.strerror or error}", file=path) from None
+    try:
+        data = parse_toml(path)
+    except InputError:
+        data = None
+    if data and any(key in data for key in TOP_LEVEL_KEYS):
+        return read_toml_scene(path, data)
+    return read_moordyn(path)
 
 
 def default_scene():

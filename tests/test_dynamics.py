@@ -244,18 +244,21 @@ def test_adaptive_steps_follow_their_tolerance(tmp_path):
     assert e_tight < e_loose / 3, (e_loose, e_tight)
 
 
-def test_collection_lists_every_frame_once_closed(tmp_path):
-    """The .pvd is rewritten at most every ``refresh`` seconds while frames come, and in full
-    by ``close``; what it lists is always a valid collection."""
+def test_collection_lists_every_frame_after_each_frame(tmp_path):
+    """The .pvd is rewritten after every frame (so a run killed outright lists every complete
+    frame); past ``every_frame`` frames at most every ``refresh`` seconds, and in full by
+    ``close``. What it lists is always a valid collection of files that exist."""
     from cablefem.io.vtk import TimeSeriesWriter, polyline_mesh, read_collection
 
-    writer = TimeSeriesWriter(str(tmp_path), "run", refresh=3600.0)
+    writer = TimeSeriesWriter(str(tmp_path), "run", refresh=3600.0, every_frame=3)
     line = {"points": np.array([[0.0, 0, 0], [1.0, 0, 0]]), "tension": np.array([1.0, 2.0])}
+    listed = []
     for k in range(5):
         writer.write(0.1 * k, polyline_mesh([line]))
-    times, _ = read_collection(tmp_path / "run.pvd")
-    assert len(times) == 0  # not due yet: the collection written at the start, empty
+        listed.append(len(read_collection(tmp_path / "run.pvd")[0]))
+    assert listed == [1, 2, 3, 3, 3]  # after the third frame, not due again for an hour
     writer.close()
     times, files = read_collection(tmp_path / "run.pvd")
     np.testing.assert_allclose(times, [0.0, 0.1, 0.2, 0.3, 0.4])
     assert all(os.path.isfile(f) for f in files)
+    assert sorted(os.listdir(tmp_path)) == ["run.pvd"] + [f"run_{k:05d}.vtu" for k in range(5)]  # no temporaries

@@ -118,9 +118,9 @@ def test_toml_keys_override_moordyn_values_one_by_one(tmp_path):
     assert (scene.contact.stiffness, scene.contact.damping) == (1.0e5, 3.0e5)  # cBot kept
     assert scene.seabed.depth == 850.0 and scene.solver.duration == 30.0
     (tmp_path / "s.toml").write_text('[moordyn]\nfile = "mooring.dat"\n[seabed]\nkind = "horizontal"\n'
-                                     'depth = 800.0\ndamping_ratio = 0.5\n')
+                                     'depth = 900.0\ndamping_ratio = 0.5\n')
     scene = load_scene(tmp_path / "s.toml")
-    assert scene.seabed.depth == 800.0  # a TOML seabed kind replaces WtrDpth
+    assert scene.seabed.depth == 900.0  # a TOML seabed kind replaces WtrDpth (850 m)
     assert (scene.contact.damping_ratio, scene.contact.damping) == (0.5, None)  # a written ratio beats cBot
 
 

@@ -116,8 +116,9 @@ def test_a_planar_mesh_becomes_its_plane_and_a_curved_one_stays_a_mesh(tmp_path,
 
 
 def test_a_planar_sloping_grid_with_a_line_end_outside_it_stays_a_grid(tmp_path):
-    # outside, the grid is clamped flat while its plane would go on sloping
-    grid = _grid(lambda x, y: -100.0 + 0.05 * (x + 500.0), x=np.linspace(-450.0, 100.0, 6))
+    # outside, the grid is clamped flat while its plane would go on sloping (falling towards the
+    # anchor at x = -500, z = -100, so that it lies above the clamped seabed, not 2.5 m in it)
+    grid = _grid(lambda x, y: -100.0 - 0.05 * (x + 500.0), x=np.linspace(-450.0, 100.0, 6))
     moordyn_c.write(tmp_path / "bathy.txt", grid)
     scene = _load(tmp_path, 'kind = "grid"\nfile = "bathy.txt"\n')
     assert type(scene.seabed) is DepthGrid

@@ -2,8 +2,10 @@
 
 Sections read: LINE TYPES, POINTS, LINES, OPTIONS (value first: ``850 WtrDpth``)
 and OUTPUTS (channel names, up to ``END``, recorded and ignored). Rows before
-the first recognised ``---`` header are the title. RODS, BODIES, ROD TYPES,
-FAILURE or any unrecognised section that holds rows is refused by name.
+the first recognised ``---`` header are the title (``moordyn_sections`` cuts the
+file). RODS, BODIES, ROD TYPES, FAILURE or any unrecognised section that holds
+rows is refused by name. Numbers and IDs are ASCII (``str.isdigit`` and ``float``
+would take other scripts' digits) and within the sane limits of ``validate.LIMITS``.
 
 Mapping (each conversion checked against the MoorDyn 2.7 library, docs/scene.md):
 - every chain of MoorDyn lines joined through massless free points that join
@@ -24,36 +26,18 @@ and the note says which model was chosen.
 
 import math
 import os
+import re
 
 import numpy as np
 
 from ..errors import InputError
 from ..geometry import Horizontal, Plane, simplify as simplest_model
-from ..geometry.readers import is_number
+from ..geometry.readers import is_integer, is_number, parse_number
 from ..line import Line, LineType, Segment
 from ..scene import Contact, Environment, Friction, Scene, Solver
 from . import validate as v
+from .moordyn_sections import TABLE_COLUMNS, at as _at, parse_sections, split_sections
 
-#: header keywords (upper case) -> section, tried in this order as MoorDyn does
-SECTION_KEYWORDS = (
-    (("LINE DICTIONARY", "LINE TYPES"), "LINE TYPES"),
-    (("ROD DICTIONARY", "ROD TYPES"), "ROD TYPES"),
-    (("BODIES", "BODY LIST", "BODY PROPERTIES"), "BODIES"),
-    (("RODS", "ROD LIST", "ROD PROPERTIES"), "RODS"),
-    (("POINTS", "POINT LIST", "POINT PROPERTIES", "CONNECTION PROPERTIES", "NODE PROPERTIES"), "POINTS"),
-    (("LINES", "LINE LIST", "LINE PROPERTIES"), "LINES"),
-    (("FAILURE",), "FAILURE"),
-    (("OPTIONS",), "OPTIONS"),
-    (("OUTPUT",), "OUTPUTS"),
-)
-TABLE_COLUMNS = {
-    "LINE TYPES": ("Name", "Diam", "MassDen", "EA", "BA/-zeta", "EI", "Cd", "Ca", "CdAx", "CaAx"),
-    "POINTS": ("ID", "Attachment", "X", "Y", "Z", "M", "V", "CdA", "CA"),
-    "LINES": ("ID", "LineType", "AttachA", "AttachB", "UnstrLen", "NumSegs"),
-}
-#: column names that only MoorDyn v1 tables have (their columns are in another order)
-V1_COLUMNS = {"LINE TYPES": {"CAN", "CAT", "CDN", "CDT"}, "POINTS": {"FX", "FY", "FZ"},
-              "LINES": {"NODEANCH", "NODEFAIR"}}
 FIXED = ("ANCHOR", "FIXED", "FIX")
 COUPLED = ("VESSEL", "VES", "COUPLED", "CPLD", "FAIRLEAD")
 FREE = ("CONNECT", "CON", "FREE")
@@ -61,85 +45,29 @@ NO_MOTION_NOTE = "MoorDyn files have no fairlead motion: coupled points stay fix
 #: MoorDyn-C 2.x defaults of the options cablefem uses (g and kBot measured with the library)
 OPTION_DEFAULTS = {"wtrdnsty": 1025.0, "g": 9.80665, "kbot": 3.0e6, "cbot": 3.0e5,
                    "frictioncoefficient": 0.0, "fricdamp": 200.0, "statdynfricscale": 1.0}
-LINE_TYPE_CHECKS = {"Diam": v.positive, "MassDen": v.positive, "EA": v.positive, "BA/-zeta": v.number,
-                    "EI": v.non_negative, "Cd": v.non_negative, "Ca": v.non_negative,
-                    "CdAx": v.non_negative, "CaAx": v.non_negative}
+_COEFFICIENT = v.limited(v.non_negative, "coefficient")
+LINE_TYPE_CHECKS = {"Diam": v.limited(v.positive, "diameter"), "MassDen": v.limited(v.positive, "mass"),
+                    "EA": v.limited(v.positive, "EA"), "BA/-zeta": v.number, "EI": v.non_negative,
+                    "Cd": _COEFFICIENT, "Ca": _COEFFICIENT, "CdAx": _COEFFICIENT, "CaAx": _COEFFICIENT}
 OPTION_ALIASES = {"rhow": "wtrdnsty", "gravity": "g"}
-OPTION_CHECKS = {"wtrdpth": v.positive, "wtrdnsty": v.positive, "g": v.positive, "kbot": v.positive,
-                 "cbot": v.non_negative, "frictioncoefficient": v.non_negative, "fricdamp": v.positive,
-                 "statdynfricscale": v.positive, "dtm": v.positive, "tmax": v.positive}
-
-
-def _at(number, key):
-    """The key of a row: 'line <number>: <key>'."""
-    return f"line {number}: {key}"
+OPTION_CHECKS = {"wtrdpth": v.limited(v.positive, "length"),
+                 "wtrdnsty": v.limited(v.positive, "water_density"),
+                 "g": v.limited(v.positive, "gravity"), "kbot": v.limited(v.positive, "stiffness"),
+                 "cbot": v.limited(v.non_negative, "contact_damping"),
+                 "frictioncoefficient": v.limited(v.non_negative, "friction"),
+                 "fricdamp": v.limited(v.positive, "friction_damping"),
+                 "statdynfricscale": v.limited(v.positive, "friction"), "dtm": v.positive,
+                 "tmax": v.positive}
+_COORDINATE = v.limited(v.number, "coordinate")
+_WHOLE = re.compile(r"-?[0-9]+")  # ASCII digits only: str.isdigit() takes '\u00b2', which int() refuses
 
 
 def _value(token, number, key, check=v.number):
     """A checked number from a file token; the error names the file line and the column."""
-    try:
-        value = float(token)
-    except ValueError:
-        raise InputError(f"expected a number, got '{token}'", key=_at(number, key)) from None
+    value = parse_number(token)
+    if value is None:
+        raise InputError(f"expected a number, got '{token}'", key=_at(number, key))
     return check(value, _at(number, key))
-
-
-def split_sections(text):
-    """[(section or None, header text, line number, [(line number, fields)])] of a MoorDyn file."""
-    sections, current = [], None
-    for number, raw in enumerate(text.splitlines(), start=1):
-        row = raw.strip()
-        if not row:
-            continue
-        if "---" in row:
-            title = " ".join(row.replace("-", " ").split()).upper()
-            name = next((section for keys, section in SECTION_KEYWORDS
-                         if any(key in title for key in keys)), None)
-            current = (name, title, number, [])
-            sections.append(current)
-        elif row.upper() == "END":
-            break
-        elif current is not None:
-            current[3].append((number, row.split()))
-    return sections
-
-
-def _table_rows(section, rows):
-    """Data rows of a table section: up to two leading column-name/unit rows are dropped."""
-    skipped = 0
-    while skipped < min(2, len(rows)) and not any(is_number(f) for f in rows[skipped][1]):
-        number, fields = rows[skipped]
-        if V1_COLUMNS[section] & {f.upper() for f in fields}:
-            raise InputError(f"MoorDyn v1 columns ({' '.join(fields)}) are not supported; write the v2 "
-                             f"columns {' '.join(TABLE_COLUMNS[section])}", key=_at(number, section))
-        skipped += 1
-    columns = TABLE_COLUMNS[section]
-    for number, fields in rows[skipped:]:
-        if len(fields) < len(columns):
-            raise InputError(f"expected {len(columns)} columns ({' '.join(columns)}), got {len(fields)}",
-                             key=_at(number, section))
-    return rows[skipped:]
-
-
-def parse_sections(sections):
-    """Raw tables of a split file: (line types, points, lines, options, outputs)."""
-    found = {"LINE TYPES": [], "POINTS": [], "LINES": [], "OPTIONS": [], "OUTPUTS": []}
-    recognised = False
-    for name, title, number, rows in sections:
-        if name is None:
-            data = [r for r in rows if sum(is_number(f) for f in r[1]) >= 2]
-            if recognised and data:
-                raise InputError("unrecognised section (cablefem reads LINE TYPES, POINTS, LINES, OPTIONS, "
-                                 "OUTPUTS)", key=_at(number, title))
-            continue
-        recognised = True
-        if name in ("LINE TYPES", "POINTS", "LINES"):
-            found[name] += _table_rows(name, rows)
-        elif name in ("OPTIONS", "OUTPUTS"):
-            found[name] += rows
-        elif any(sum(is_number(f) for f in fields) >= 1 for _, fields in rows):
-            raise InputError("not supported yet", key=_at(number, name))
-    return found
 
 
 def _line_types(rows, notes):
@@ -169,7 +97,7 @@ def _points(rows, notes):
     points = {}
     for number, fields in rows:
         key = f"POINTS.{fields[0]}"
-        if not fields[0].isdigit():
+        if not is_integer(fields[0]):
             raise InputError(f"expected a point number, got '{fields[0]}'", key=_at(number, key))
         pid = int(fields[0])
         if pid in points:
@@ -182,7 +110,8 @@ def _points(rows, notes):
         if kind is None:
             raise InputError(f"unknown attachment '{fields[1]}'; valid: Fixed/Anchor, Coupled/Vessel, "
                              "Free/Connect", key=_at(number, f"{key}.Attachment"))
-        x, y, z, mass, volume, cda, ca = (_value(tok, number, f"{key}.{col}")
+        x, y, z, mass, volume, cda, ca = (_value(tok, number, f"{key}.{col}", _COORDINATE if col in ("X", "Y", "Z")
+                                                 else v.number)
                                           for col, tok in zip(TABLE_COLUMNS["POINTS"][2:], fields[2:9]))
         if kind == "free" and (cda or ca) and not (mass or volume):
             notes.append(f"POINTS.{pid}: CdA and CA of a joint between two lines ignored")
@@ -207,12 +136,12 @@ def _lines(rows, types, points):
             if token.upper().startswith("R"):
                 raise InputError(f"attached to rod end '{token}': RODS are not supported yet",
                                  key=_at(number, f"{key}.{column}"))
-            if not token.isdigit() or int(token) not in points:
+            if not is_integer(token) or int(token) not in points:
                 raise InputError(f"no point '{token}' in POINTS", key=_at(number, f"{key}.{column}"))
             ends.append(int(token))
-        length = _value(fields[4], number, f"{key}.UnstrLen", v.positive)
-        segments = v.whole(int(fields[5]) if fields[5].lstrip("-").isdigit() else fields[5],
-                           _at(number, f"{key}.NumSegs"))
+        length = _value(fields[4], number, f"{key}.UnstrLen", v.limited(v.positive, "length"))
+        segments = v.limited(v.whole, "nodes")(int(fields[5]) if _WHOLE.fullmatch(fields[5]) else fields[5],
+                                               _at(number, f"{key}.NumSegs"))
         lines.append({"id": fields[0], "type": fields[1], "ends": ends, "length": length,
                       "segments": segments, "row": number})
     if not lines:
@@ -221,8 +150,9 @@ def _lines(rows, types, points):
 
 
 def _options(rows, notes):
-    """OPTIONS as (checked values by lower-case name, raw text by name, seafloor file or None)."""
-    values, raw, seafloor, ignored = {}, {}, None, []
+    """OPTIONS as (checked values by lower-case name, raw text by name, seafloor file or None,
+    file line numbers by lower-case name)."""
+    values, raw, seafloor, ignored, numbers = {}, {}, None, [], {}
     for number, fields in rows:
         if len(fields) < 2:
             raise InputError("expected 'value name'", key=_at(number, "OPTIONS"))
@@ -233,13 +163,14 @@ def _options(rows, notes):
             seafloor = (token, number)
         elif lower in OPTION_CHECKS:
             values[lower] = _value(token, number, f"OPTIONS.{name}", OPTION_CHECKS[lower])
+            numbers[lower] = number
         else:
             ignored.append(name)
     if ignored:
         notes.append(f"OPTIONS ignored by cablefem: {', '.join(ignored)}")
     if "dtm" in values:
         notes.append(f"dtM = {values['dtm']:g} s is MoorDyn's explicit step; the implicit solver keeps its own dt")
-    return values, raw, seafloor
+    return values, raw, seafloor, numbers
 
 
 def damping_time(ba, ea, mass, length, segments):
@@ -359,18 +290,20 @@ def _build(path, text, simplify=True):
     raw_types = _line_types(found["LINE TYPES"], notes)
     points = _points(found["POINTS"], notes)
     raw_lines = _lines(found["LINES"], raw_types, points)
-    options, raw_options, seafloor = _options(found["OPTIONS"], notes)
+    options, raw_options, seafloor, options_rows = _options(found["OPTIONS"], notes)
     if found["OUTPUTS"]:
         notes.append(f"OUTPUTS ignored: {' '.join(f for _, fields in found['OUTPUTS'] for f in fields)}")
     get = lambda name: options.get(name, OPTION_DEFAULTS.get(name))  # noqa: E731
     environment = Environment(water_density=get("wtrdnsty"), gravity=get("g"))
-    built_types, lines = {}, []
+    built_types, lines, keys = {}, [], {"name": (path, "name (from the file name)")}
     for chain, first, last in _chains(raw_lines, points):
         segments = [Segment(_line_type(raw, raw_types, built_types), raw["length"], raw["segments"])
                     for raw in chain]
         name = "line" + "+".join(raw["id"] for raw in chain)
         line = Line(name, points[first][2], points[last][2], segments)
-        lines.append(v.check_chord(line, _at(chain[0]["row"], f"LINES.{'+'.join(r['id'] for r in chain)}")))
+        key = _at(chain[0]["row"], f"LINES.{'+'.join(r['id'] for r in chain)}")
+        lines.append(v.check_chord(line, key))
+        keys.update(_line_keys(path, len(lines) - 1, key, chain, (first, last), points))
         if len(chain) > 1:
             notes.append(f"{name}: MoorDyn lines {', '.join(r['id'] for r in chain)} joined through free "
                          "points into one line, anchor first")
@@ -378,9 +311,11 @@ def _build(path, text, simplify=True):
         if not any(pid in raw["ends"] for raw in raw_lines):
             notes.append(f"POINTS.{pid} ({kind}) is attached to no line; ignored")
     if seafloor is not None:
-        file = v.existing_file(seafloor[0], _at(seafloor[1], "OPTIONS.SeafloorFile"), os.path.dirname(path))
-        seabed = v.read_seabed_file(file, "grid", _at(seafloor[1], "OPTIONS.SeafloorFile"))
+        keys["seabed"] = (path, _at(seafloor[1], "OPTIONS.SeafloorFile"))
+        file = v.existing_file(seafloor[0], keys["seabed"][1], os.path.dirname(path))
+        seabed = v.read_seabed_file(file, "grid", keys["seabed"][1])
     elif "wtrdpth" in options:
+        keys["seabed"] = (path, _at(options_rows["wtrdpth"], "OPTIONS.WtrDpth"))
         seabed = Horizontal(options["wtrdpth"])
     else:
         raise InputError("missing: needed for the seabed unless SeafloorFile is given", key="OPTIONS.WtrDpth")
@@ -388,16 +323,29 @@ def _build(path, text, simplify=True):
     seabed, seabed_note = choose_seabed(seabed, lines, simplify)
     friction = _friction(get, lines[0], environment, notes)
     solver = Solver(duration=options["tmax"]) if "tmax" in options else Solver()
+    if "tmax" in options:
+        keys["solver.duration"] = (path, _at(options_rows["tmax"], "OPTIONS.TMax"))
     notes += [seabed_note, NO_MOTION_NOTE]
     return Scene(name=os.path.splitext(os.path.basename(path))[0], lines=lines, seabed=seabed,
                  contact=contact, environment=environment, friction=friction, solver=solver,
-                 source=path, notes=notes, moordyn_options=raw_options)
+                 source=path, notes=notes, moordyn_options=raw_options, keys=keys)
+
+
+def _line_keys(path, index, key, chain, ends, points):
+    """Where the scene keys of line ``index`` stand in the MoorDyn file: dict scene key -> (path, key)."""
+    keys = {f"lines[{index}]": (path, key), f"lines[{index}].name": (path, key)}
+    for end, pid in zip(("anchor", "fairlead"), ends):
+        keys[f"lines[{index}].{end}"] = (path, _at(points[pid][0], f"POINTS.{pid}"))
+    for j, raw in enumerate(chain):
+        keys[f"lines[{index}].segments[{j}].elements"] = (path, _at(raw["row"], f"LINES.{raw['id']}.NumSegs"))
+    return keys
 
 
 def _line_type(raw, raw_types, built):
     """The LineType of one MoorDyn line (BA < 0 depends on the line's segment length)."""
-    _, props = raw_types[raw["type"]]
+    number, props = raw_types[raw["type"]]
     beta = damping_time(props["BA/-zeta"], props["EA"], props["MassDen"], raw["length"], raw["segments"])
+    v.limited(v.number, "damping_time")(beta, _at(number, f"LINE TYPES.{raw['type']}.BA/-zeta (beta)"))
     name = raw["type"]
     if name in built and built[name].damping != beta:
         name = f"{raw['type']}-line{raw['id']}"

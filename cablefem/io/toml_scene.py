@@ -24,6 +24,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..geometry import Horizontal, Plane
+from ..geometry.readers import MAX_COORDINATE, parse_number
 from ..line import Line, LineType, Segment
 from ..scene import INTEGRATORS, Contact, Environment, Friction, Motion, Output, Scene, Solver
 from . import validate as v
@@ -32,6 +33,8 @@ from .moordyn_input import NO_MOTION_NOTE, choose_seabed, read_moordyn
 TOP_LEVEL_KEYS = ("name", "environment", "line_types", "lines", "seabed", "friction",
                   "motion", "solver", "output", "moordyn")
 SEABED_KINDS = ("horizontal", "plane", "grid", "mesh", "points")
+#: the key that places each kind of seabed (named by the scene-level checks)
+SEABED_KEY = {"horizontal": "depth", "plane": "point", "grid": "file", "mesh": "file", "points": "file"}
 SEABED_SHAPE_KEYS = {"horizontal": ("depth",),
                      "plane": ("point", "normal", "slope_deg", "azimuth_deg"),
                      "grid": ("file",), "mesh": ("file",), "points": ("file",)}
@@ -45,25 +48,34 @@ MOTION_PLANES = ("xy", "xz", "yz", "yx", "zx", "zy")  # sin along the first axis
 ASSEMBLY_PATHS = ("kernel", "forms")
 NEWTON_MODES = ("auto", "full", "modified")
 
-ENVIRONMENT_KEYS = {"water_density": v.positive, "gravity": v.positive, "current": v.vector3}
-LINE_TYPE_KEYS = {"diameter": v.positive, "mass": v.positive, "EA": v.positive,
-                  "damping": v.non_negative, "Cd_normal": v.non_negative,
-                  "Cd_tangential": v.non_negative, "Ca_normal": v.non_negative,
-                  "Ca_tangential": v.non_negative}
-LINE_KEYS = {"name": v.text, "anchor": v.vector3, "fairlead": v.vector3, "segments": v.tables,
-             "order": v.whole}
-SEGMENT_KEYS = {"type": v.text, "length": v.positive, "elements": v.whole}
-CONTACT_KEYS = {"stiffness": v.positive, "damping_ratio": v.non_negative, "damping": v.non_negative}
-FRICTION_KEYS = {"model": v.choice(FRICTION_MODELS), "mu": v.non_negative,
-                 "mu_axial": v.non_negative, "mu_transverse": v.non_negative,
-                 "static_scale": v.positive, "v_threshold": v.positive,
-                 "saturation_damping": v.positive}
+# every number is bounded by a sane limit (validate.LIMITS, docs/scene.md "Limits")
+_COEFFICIENT = v.limited(v.non_negative, "coefficient")
+_POINT = v.limited(v.vector3, "coordinate")
+_LENGTH = v.limited(v.positive, "length")
+_ORDER = v.limited(v.whole, "order")
+_ELEMENTS = v.limited(v.whole, "nodes")
+ENVIRONMENT_KEYS = {"water_density": v.limited(v.positive, "water_density"),
+                    "gravity": v.limited(v.positive, "gravity"), "current": v.limited(v.vector3, "speed")}
+LINE_TYPE_KEYS = {"diameter": v.limited(v.positive, "diameter"), "mass": v.limited(v.positive, "mass"),
+                  "EA": v.limited(v.positive, "EA"), "damping": v.limited(v.non_negative, "damping_time"),
+                  "Cd_normal": _COEFFICIENT, "Cd_tangential": _COEFFICIENT, "Ca_normal": _COEFFICIENT,
+                  "Ca_tangential": _COEFFICIENT}
+LINE_KEYS = {"name": v.text, "anchor": _POINT, "fairlead": _POINT, "segments": v.tables, "order": _ORDER}
+SEGMENT_KEYS = {"type": v.text, "length": _LENGTH, "elements": _ELEMENTS}
+CONTACT_KEYS = {"stiffness": v.limited(v.positive, "stiffness"),
+                "damping_ratio": v.limited(v.non_negative, "damping_ratio"),
+                "damping": v.limited(v.non_negative, "contact_damping")}
+FRICTION_KEYS = {"model": v.choice(FRICTION_MODELS), "mu": v.limited(v.non_negative, "friction"),
+                 "mu_axial": v.limited(v.non_negative, "friction"),
+                 "mu_transverse": v.limited(v.non_negative, "friction"),
+                 "static_scale": v.limited(v.positive, "friction"), "v_threshold": v.limited(v.positive, "speed"),
+                 "saturation_damping": v.limited(v.positive, "friction_damping")}
 SOLVER_KEYS = {"integrator": v.choice(INTEGRATORS), "dt": v.positive, "duration": v.positive,
-               "tolerance": v.positive, "max_iterations": v.whole, "assembly": v.choice(ASSEMBLY_PATHS),
-               "rho_inf": v.fraction, "fit_touchdown": v.boolean, "newton": v.choice(NEWTON_MODES),
-               "adaptive": v.boolean, "error_tolerance": v.positive}
-OUTPUT_KEYS = {"dir": v.text, "every": v.positive}
-MOORDYN_KEYS = {"file": v.text, "order": v.whole, "elements": v.whole}
+               "tolerance": v.positive, "max_iterations": v.limited(v.whole, "iterations"),
+               "assembly": v.choice(ASSEMBLY_PATHS), "rho_inf": v.fraction, "fit_touchdown": v.boolean,
+               "newton": v.choice(NEWTON_MODES), "adaptive": v.boolean, "error_tolerance": v.positive}
+OUTPUT_KEYS = {"dir": v.folder, "every": v.positive}
+MOORDYN_KEYS = {"file": v.text, "order": _ORDER, "elements": _ELEMENTS}
 
 
 def parse_toml(path):
@@ -75,6 +87,8 @@ def parse_toml(path):
         raise InputError(f"not valid TOML: {v.one_line(error)}") from None
     except UnicodeDecodeError:
         raise InputError("not valid TOML: not UTF-8 text") from None
+    except RecursionError:
+        raise InputError("not valid TOML: arrays or tables nested too deeply") from None
 
 
 def read_toml_scene(path, data=None):
@@ -91,9 +105,11 @@ def read_toml_scene(path, data=None):
     v.check_keys(data, TOP_LEVEL_KEYS, "")
     name = v.text(data["name"], "name") if "name" in data else os.path.splitext(os.path.basename(path))[0]
     notes = []
+    keys = {} if "name" in data else {"name": (path, "name (from the file name)")}
     if "moordyn" in data:
-        base = _moordyn_base(data, folder)
+        base = _moordyn_base(data, path)
         lines = base.lines
+        keys.update({key: where for key, where in base.keys.items() if key != "name"})
         kept = [n for n in base.notes if not n.startswith("seabed:") and
                 not (n == NO_MOTION_NOTE and "motion" in data)]
         notes += kept + [f"lines, line types and options from {base.source}; TOML keys override"]
@@ -104,6 +120,9 @@ def read_toml_scene(path, data=None):
     environment = replace(base.environment if base else Environment(),
                           **_section(data, "environment", ENVIRONMENT_KEYS))
     seabed, contact, simplify = _seabed(data.get("seabed", {}), folder, base)
+    kind = data.get("seabed", {}).get("kind")
+    if kind is not None:  # the TOML's seabed replaces the MoorDyn file's
+        keys["seabed"] = (path, f"seabed.{SEABED_KEY.get(kind, 'kind')}")
     seabed, seabed_note = choose_seabed(seabed, lines, simplify)
     friction = replace(base.friction if base else Friction(),
                        **_section(data, "friction", FRICTION_KEYS))
@@ -113,7 +132,7 @@ def read_toml_scene(path, data=None):
     notes.append(seabed_note)
     return Scene(name=name, lines=lines, seabed=seabed, contact=contact, environment=environment,
                  friction=friction, motion=motion, solver=solver, output=output, source=path,
-                 notes=notes, moordyn_options=dict(base.moordyn_options) if base else {})
+                 notes=notes, moordyn_options=dict(base.moordyn_options) if base else {}, keys=keys)
 
 
 def _section(data, name, converters):
@@ -123,8 +142,10 @@ def _section(data, name, converters):
     return v.pick(v.table(data[name], name), name, converters)
 
 
-def _moordyn_base(data, folder):
-    """The Scene of the MoorDyn file named in [moordyn], with its element order/count applied."""
+def _moordyn_base(data, path):
+    """The Scene of the MoorDyn file named in [moordyn] of the TOML at ``path``, with its element
+    order/count applied."""
+    folder = os.path.dirname(path)
     for key in ("lines", "line_types"):
         if key in data:
             raise InputError("cannot be combined with [moordyn]: the lines come from the MoorDyn file",
@@ -135,6 +156,8 @@ def _moordyn_base(data, folder):
     lines = base.lines
     if "elements" in values:
         lines = [line.with_elements(values["elements"]) for line in lines]
+        base.keys.update({f"lines[{i}].segments[{j}].elements": (path, "moordyn.elements")
+                          for i, line in enumerate(lines) for j in range(len(line.segments))})
     if "order" in values:
         lines = [line.with_order(values["order"]) for line in lines]
     return replace(base, lines=lines)
@@ -236,7 +259,7 @@ def _plane(values):
     return Plane.from_slope(values["point"], math.radians(slope), math.radians(values.get("azimuth_deg", 0.0)))
 
 
-_SHAPE_CONVERTERS = {"depth": v.positive, "point": v.vector3, "normal": v.vector3,
+_SHAPE_CONVERTERS = {"depth": _LENGTH, "point": _POINT, "normal": _POINT,
                      "slope_deg": v.number, "azimuth_deg": v.number, "file": v.text}
 
 
@@ -247,9 +270,9 @@ def _motion(raw, folder):
     kind = v.choice(MOTION_KINDS)(raw["kind"], "motion.kind")
     elsewhere = {key: f"does not apply to motion kind '{kind}'"
                  for keys in MOTION_KEYS.values() for key in keys}
-    converters = {"kind": v.text, "amplitude": v.vector3, "period": v.positive, "offset": v.vector3,
-                  "ramp": v.non_negative, "radius": v.positive, "plane": v.choice(MOTION_PLANES),
-                  "file": v.text}
+    converters = {"kind": v.text, "amplitude": v.limited(v.vector3, "length"), "period": v.positive,
+                  "offset": v.limited(v.vector3, "length"), "ramp": v.non_negative,
+                  "radius": _LENGTH, "plane": v.choice(MOTION_PLANES), "file": v.text}
     converters = {key: converters[key] for key in ("kind",) + MOTION_KEYS[kind]}
     values = v.pick(raw, "motion", converters, required=MOTION_REQUIRED[kind], elsewhere=elsewhere)
     if kind == "table":
@@ -279,13 +302,15 @@ def read_motion_table(path, key):
             continue
         if len(fields) != 4:
             raise InputError(f"{name} line {number}: expected 4 columns t, x, y, z, got {len(fields)}", key=key)
-        try:
-            values = [float(f) for f in fields]
-        except ValueError:
+        values = [parse_number(f) for f in fields]
+        if None in values:
             raise InputError(f"{name} line {number}: expected numbers t, x, y, z, got '{row.strip()}'",
-                             key=key) from None
+                             key=key)
         if not all(math.isfinite(x) for x in values):
             raise InputError(f"{name} line {number}: values must be finite, got '{row.strip()}'", key=key)
+        if max(abs(x) for x in values[1:]) > MAX_COORDINATE:
+            raise InputError(f"{name} line {number}: a displacement beyond the sane limit of "
+                             f"{MAX_COORDINATE:g} m, got '{row.strip()}'", key=key)
         if table and values[0] <= table[-1][1][0]:
             raise InputError(f"{name} line {number}: times must strictly increase "
                              f"(t = {values[0]:g} after t = {table[-1][1][0]:g})", key=key)

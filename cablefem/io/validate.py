@@ -8,6 +8,7 @@ unknown keys (suggesting the closest valid one) and reported missing ones.
 import difflib
 import math
 import os
+import unicodedata
 
 import numpy as np
 
@@ -15,6 +16,33 @@ from ..errors import InputError
 
 #: a line may not need more than this strain to reach its fairlead from its anchor
 MAX_CHORD_STRAIN = 0.20
+
+#: sane limits, checked before any work starts (docs/scene.md, "Limits"): quantity ->
+#: (largest magnitude, unit, why). Far beyond anything real, and far below where products
+#: of two or three such values overflow a float (1e308) or exhaust a machine.
+LIMITS = {
+    "coordinate": (1e8, "m", "UTM northings reach 1e7 m"),
+    "length": (1e8, "m", "no line, depth or motion comes near 100 000 km"),
+    "diameter": (10.0, "m", "the largest lines, buoyancy modules included, are ~2 m"),
+    "mass": (1e5, "kg/m", "the heaviest chains are ~1e3 kg/m"),
+    "EA": (1e13, "N", "the stiffest real lines are ~1e10-1e11 N"),
+    "damping_time": (1e6, "s", "beta is ~1e-3 to 1 s"),
+    "coefficient": (1e3, "", "drag and added-mass coefficients are ~0.1 to 10"),
+    "water_density": (1e5, "kg/m^3", "sea water is 1025 kg/m^3"),
+    "gravity": (1e3, "m/s^2", "g is 9.81 m/s^2"),
+    "speed": (1500.0, "m/s", "the speed of sound in water"),
+    "acceleration": (1e4, "m/s^2", "1000 g; vessels and actuators stay under a few g"),
+    "stiffness": (1e16, "N/m^3", "seabeds are ~1e5-1e7 N/m^3; verification/stability uses 3e14"),
+    "damping_ratio": (1e3, "", "critical damping is 1"),
+    "contact_damping": (1e12, "N s/m^3", "MoorDyn's cBot is ~3e5 N s/m^3"),
+    "friction": (100.0, "", "friction coefficients are ~0.1 to 1.5"),
+    "friction_damping": (1e12, "N s/m", "MoorDyn's FricDamp is ~200 N s/m"),
+    "iterations": (10000, "", "Newton converges in tens of iterations or not at all"),
+    "order": (20, "", "P1-P3 are the useful orders; scikit-fem's ElementLinePp is well conditioned "
+              "far beyond 20"),
+    "nodes": (1_000_000, "", "~6 KB of memory per node (0.9 GB measured at 1e5 elements) and ~5 us "
+              "per node and step: 1e6 nodes take ~6 GB and ~5 s per step"),
+}
 
 
 def join(prefix, key):
@@ -119,6 +147,23 @@ def whole(value, key):
     return int(value)
 
 
+def limited(converter, quantity):
+    """``converter`` followed by the sane limit ``LIMITS[quantity]`` on the magnitude of its
+    result (a number, or each number of a tuple)."""
+    bound, unit, why = LIMITS[quantity]
+
+    def convert(value, key):
+        value = converter(value, key)
+        for k, item in enumerate(value if isinstance(value, tuple) else (value,)):
+            if abs(item) > bound:
+                where = f"{key}[{k}]" if isinstance(value, tuple) else key
+                shown = [f"{x}" if isinstance(x, int) else f"{x:g}" for x in (item, bound)]
+                raise InputError(f"{shown[0]} {unit} is beyond the sane limit of {shown[1]} {unit}"
+                                 f" ({why})".replace("  ", " "), key=where)
+        return value
+    return convert
+
+
 def text(value, key):
     """A non-empty string."""
     if not isinstance(value, str):
@@ -205,6 +250,58 @@ def read_seabed_file(path, kind, key, kind_key=None):
     except Exception as error:  # noqa: BLE001 - third-party readers (meshio, ...) raise their own types
         raise InputError(f"cannot read {kind} seabed {path}: {type(error).__name__}: {one_line(error)}",
                          key=key) from None
+
+
+#: longest scene name [bytes of UTF-8]: ``<name>_<frame>.vtu`` and its temporary ``.<file>.partial``
+#: stay far below the 255 bytes a file name may hold
+MAX_NAME_BYTES = 200
+#: Unicode categories refused in names: control, format (bidi overrides, zero width),
+#: surrogate (undecodable bytes of a file name), line and paragraph separators
+_HOSTILE = ("Cc", "Cf", "Cs", "Zl", "Zp")
+
+
+def printable_name(value, key):
+    """A name without control or invisible characters and at most MAX_NAME_BYTES of UTF-8."""
+    bad = next((c for c in value if unicodedata.category(c) in _HOSTILE), None)
+    if bad is not None:
+        raise InputError(f"must not hold control or invisible characters, got {bad!r} in {value!r}",
+                         key=key)
+    size = len(value.encode("utf-8", "surrogatepass"))
+    if size > MAX_NAME_BYTES:
+        raise InputError(f"is {size} bytes long, at most {MAX_NAME_BYTES} (it names output files)",
+                         key=key)
+    return value
+
+
+def file_name_part(value, key):
+    """A scene name that is safe as the start of a file name: not empty, no path separator
+    ('/' or '\\'), not starting with '.' (hidden files, '.' and '..'), printable, bounded."""
+    if not isinstance(value, str) or not value.strip():
+        raise InputError("must not be empty", key=key)
+    for separator in ("/", "\\"):
+        if separator in value:
+            raise InputError(f"must not hold a path separator {separator!r}: it names files inside "
+                             f"the output folder, got {value!r}", key=key)
+    if value.startswith("."):
+        raise InputError(f"must not start with '.' (hidden or parent-folder file names), got {value!r}",
+                         key=key)
+    return printable_name(value, key)
+
+
+#: longest path [bytes] Linux takes (PATH_MAX)
+MAX_PATH_BYTES = 4096
+
+
+def folder(value, key):
+    """A folder path: a non-empty string without control characters (NUL included), at most
+    MAX_PATH_BYTES long; whether it can be written is checked when it is (cablefem.io.output)."""
+    value = text(value, key)
+    bad = next((c for c in value if unicodedata.category(c) in ("Cc", "Cs")), None)
+    if bad is not None:
+        raise InputError(f"must not hold control characters, got {bad!r} in {value!r}", key=key)
+    if len(value.encode("utf-8")) > MAX_PATH_BYTES:
+        raise InputError(f"is longer than the {MAX_PATH_BYTES} bytes a path may hold", key=key)
+    return value
 
 
 def one_line(error):

@@ -1,31 +1,23 @@
 """VTK time series through meshio: one .vtu per frame and a .pvd collection (DESIGN.md).
 
-meshio writes the frames; the .pvd is a few lines of XML written here, and
-rewritten (atomically) after every frame, so a run stopped at any moment
-leaves a collection that ParaView and pyvista open, holding every frame
-written so far.
+meshio writes each frame under a temporary name, renamed into place when it is
+complete (``output.replace_into``); the .pvd is a few lines of XML written
+here and rewritten (atomically, ``output.write_atomic``) after every frame. A
+run stopped at any moment, even killed outright, leaves a collection that
+ParaView and pyvista open, listing every complete frame, and no partial
+.vtu file.
 """
 
 import os
-import tempfile
 import time
 from xml.sax.saxutils import quoteattr
 
 import meshio
 import numpy as np
 
+from .output import GrowingFile, inside, replace_into, write_atomic
 
-def write_atomic(path, text):
-    """Write text to path through a temporary file renamed into place."""
-    folder = os.path.dirname(os.path.abspath(path))
-    handle, tmp = tempfile.mkstemp(dir=folder, prefix=".tmp-", suffix=os.path.basename(path))
-    try:
-        with os.fdopen(handle, "w") as out:
-            out.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        os.unlink(tmp)
-        raise
+__all__ = ["TimeSeriesWriter", "polyline_mesh", "read_collection", "write_atomic"]
 
 
 def polyline_mesh(lines):
@@ -54,40 +46,50 @@ def polyline_mesh(lines):
 class TimeSeriesWriter:
     """Frames ``<name>_<k>.vtu`` and the collection ``<name>.pvd`` in ``folder``.
 
-    The collection is rewritten (atomically) when a frame comes at least ``refresh`` seconds of
-    wall time after the last rewrite, and by ``close``: a run stopped in any way that lets
-    ``close`` run lists every frame, one killed outright lists those up to the last rewrite.
-    (Rewriting it for each of 600 frames cost 0.8 s of a 5 s ``cablefem run``.)"""
+    The collection is rewritten after every frame, so that even a run killed outright
+    leaves one listing every complete frame: its text is kept formatted and goes out in
+    one write and one atomic swap (``output.GrowingFile``): 0.06-0.2 ms a frame, 0.04-0.13 s
+    of the 601 frames of the default ``cablefem run`` (measured, loaded 2-core machine),
+    where formatting it again and renaming a fresh temporary file over it took 0.39 s idle
+    and 1.1-2.1 s loaded (ext4 flushes a file renamed over another). Past
+    ``every_frame`` frames the rewrite, whose size grows with the frames, happens at most
+    every ``refresh`` seconds of wall time (and on ``close``), keeping its cost linear."""
 
-    def __init__(self, folder, name, refresh=1.0):
+    HEAD = (b'<?xml version="1.0"?>\n'
+            b'<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n  <Collection>\n')
+    TAIL = b"  </Collection>\n</VTKFile>\n"
+
+    def __init__(self, folder, name, refresh=1.0, every_frame=10_000):
         self.folder = folder
         self.name = name
         self.refresh = refresh
+        self.every_frame = every_frame
         self.frames = []  # (time, file name)
-        self._rows = []  # their lines in the collection, formatted once
+        self.listed = 0  # how many of them the collection on disk lists
+        self._rows = bytearray()  # their lines in the collection, formatted once
         os.makedirs(folder, exist_ok=True)
-        self.path = os.path.join(folder, f"{name}.pvd")
+        self.path = inside(folder, f"{name}.pvd")
+        self._collection = GrowingFile(self.path)
         self._write_collection()
 
     def write(self, t, mesh):
-        """Write one frame at time t [s] (and the collection, if it is due)."""
+        """Write one frame at time t [s], then the collection listing it."""
         file_name = f"{self.name}_{len(self.frames):05d}.vtu"
-        meshio.write(os.path.join(self.folder, file_name), mesh)
+        replace_into(lambda tmp: meshio.write(tmp, mesh, file_format="vtu"), inside(self.folder, file_name))
         self.frames.append((float(t), file_name))
-        self._rows.append(f'    <DataSet timestep="{float(t)!r}" group="" part="0" '
-                          f'file={quoteattr(file_name)}/>\n')
-        if time.monotonic() - self._written >= self.refresh:
+        self._rows += (f'    <DataSet timestep="{float(t)!r}" group="" part="0" '
+                       f'file={quoteattr(file_name)}/>\n').encode("utf-8")
+        if len(self.frames) <= self.every_frame or time.monotonic() - self._written >= self.refresh:
             self._write_collection()
 
     def close(self):
         """Write the collection with every frame."""
         self._write_collection()
+        self._collection.close()
 
     def _write_collection(self):
-        rows = "".join(self._rows)
-        write_atomic(self.path, '<?xml version="1.0"?>\n'
-                     '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n'
-                     f"  <Collection>\n{rows}  </Collection>\n</VTKFile>\n")
+        self._collection.write([self.HEAD, bytes(self._rows), self.TAIL])
+        self.listed = len(self.frames)
         self._written = time.monotonic()
 
 

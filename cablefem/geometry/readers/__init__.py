@@ -8,6 +8,7 @@ the small text helpers the grid readers use to report errors by line number.
 """
 
 import importlib
+import re
 from pathlib import Path
 
 import numpy as np
@@ -109,13 +110,34 @@ def guess_kind(path):
 
 # -- text helpers shared by the grid readers ---------------------------------
 
-def is_number(token):
-    """Whether a text token reads as a float (shared by the seabed and MoorDyn file readers)."""
+#: largest |coordinate| [m] in a seabed file (UTM northings reach 1e7 m; cablefem.io.validate.LIMITS)
+MAX_COORDINATE = 1e8
+#: most grid lines along one axis: a 1e5 x 1e5 grid of doubles would already take 80 GB
+MAX_GRID_NODES = 100_000
+_INTEGER = re.compile(r"[0-9]+")
+
+
+def parse_number(token):
+    """The float a text token spells in ASCII (``12``, ``-1.5e3``, ``nan``), or None.
+
+    Python's ``float`` also reads other scripts' digits ('\u0663' is 3) and ``1_000``; files
+    written for MoorDyn or MoorPy never hold them, and their readers refuse them."""
+    if not token.isascii() or "_" in token:
+        return None
     try:
-        float(token)
+        return float(token)
     except ValueError:
-        return False
-    return True
+        return None
+
+
+def is_number(token):
+    """Whether a text token reads as an ASCII float (shared by the seabed and MoorDyn file readers)."""
+    return parse_number(token) is not None
+
+
+def is_integer(token):
+    """Whether a text token is a whole number >= 0 in ASCII digits (not str.isdigit: it takes '\u00b2')."""
+    return _INTEGER.fullmatch(token) is not None
 
 
 def read_lines(path):
@@ -129,24 +151,36 @@ def read_lines(path):
 
 
 def numbers(tokens, line, what):
-    """Tokens (list of str) of 1-based file line ``line`` as finite floats (k,)."""
-    try:
-        values = np.array([float(t) for t in tokens])
-    except ValueError:
-        bad = next(t for t in tokens if not is_number(t))
-        raise InputError(f"{what}: {bad!r} is not a number", key=f"line {line}") from None
+    """Tokens (list of str) of 1-based file line ``line`` as finite floats (k,) within
+    +-MAX_COORDINATE."""
+    parsed = [parse_number(t) for t in tokens]
+    if None in parsed:
+        bad = tokens[parsed.index(None)]
+        raise InputError(f"{what}: {bad!r} is not a number", key=f"line {line}")
+    values = np.array(parsed, dtype=float)
     if not np.all(np.isfinite(values)):
         bad = tokens[int(np.flatnonzero(~np.isfinite(values))[0])]
         raise InputError(f"{what}: {bad!r} is not a finite number", key=f"line {line}")
+    check_coordinates(values, f"line {line}", what)
     return values
 
 
+def check_coordinates(values, key, what="coordinates"):
+    """Raise an InputError at ``key`` if any of values (any shape) [m] exceeds MAX_COORDINATE."""
+    beyond = np.flatnonzero(np.abs(np.ravel(values)) > MAX_COORDINATE)
+    if len(beyond):
+        raise InputError(f"{what}: {np.ravel(values)[beyond[0]]:g} m is beyond the sane limit of "
+                         f"{MAX_COORDINATE:g} m (UTM northings reach 1e7 m)", key=key)
+
+
 def count(token, line, name):
-    """Token (str) of file line ``line`` as a grid size, an integer >= 2."""
-    try:
-        value = int(token)
-    except ValueError:
-        raise InputError(f"{name} must be an integer, got {token!r}", key=f"line {line}") from None
+    """Token (str) of file line ``line`` as a grid size, an integer >= 2 (at most MAX_GRID_NODES)."""
+    if not is_integer(token):
+        raise InputError(f"{name} must be an integer, got {token!r}", key=f"line {line}")
+    value = int(token)
+    if value > MAX_GRID_NODES:
+        raise InputError(f"{name} = {value} is beyond the sane limit of {MAX_GRID_NODES} grid lines",
+                         key=f"line {line}")
     if value < 2:
         raise InputError(f"{name} must be at least 2, got {value}", key=f"line {line}")
     return value

@@ -18,6 +18,7 @@ import numpy as np
 
 from ...errors import InputError
 from ..triangulated import TriangulatedSurface
+from . import MAX_COORDINATE
 
 #: meshio cell types that are surface polygons, and how to cut them into triangles
 _FANS = {"triangle": [[0, 1, 2]], "quad": [[0, 1, 2], [0, 2, 3]]}
@@ -87,6 +88,10 @@ def read(path):
         if len(bad):
             raise InputError(f"point {bad[0]} has a non-finite coordinate {points[bad[0]].tolist()} "
                              f"({len(bad)} such points)")
+        beyond = np.flatnonzero(np.abs(points).max(axis=1) > MAX_COORDINATE)
+        if len(beyond):
+            raise InputError(f"point {beyond[0]} {points[beyond[0]].tolist()} lies beyond the sane limit "
+                             f"of {MAX_COORDINATE:g} m (UTM northings reach 1e7 m)")
         if triangles.min() < 0 or triangles.max() >= len(points):
             raise InputError(f"a cell refers to point {triangles.max()}, but there are {len(points)}")
         points, triangles = merge_vertices(points, triangles)

@@ -19,13 +19,13 @@ import numpy as np
 
 from ...errors import InputError
 from ..grid import DepthGrid
-from . import count, match_axis, numbers, read_lines, strictly_increasing
+from . import MAX_COORDINATE, count, is_integer, match_axis, numbers, read_lines, strictly_increasing
 
 
 def matches(head):
     """Whether the first lines head (list of str) look like this layout: 'nx ny' integers first."""
     rows = [line.split() for line in head if line.strip()]
-    return bool(rows) and len(rows[0]) == 2 and all(t.isdigit() for t in rows[0])
+    return bool(rows) and len(rows[0]) == 2 and all(is_integer(t) for t in rows[0])
 
 
 def read(path):
@@ -53,8 +53,11 @@ def read(path):
         if len(tokens) != 3:
             raise InputError(f"expected 3 values 'x y z', got {len(tokens)}", key=f"line {n}")
     try:  # fast path; the slow one finds the offending line
-        table = np.array([t for _, tokens in rows[3:] for t in tokens], dtype=float).reshape(-1, 3)
-        clean = bool(np.all(np.isfinite(table)))
+        tokens = [t for _, tokens in rows[3:] for t in tokens]
+        table = np.array(tokens, dtype=float).reshape(-1, 3)
+        joined = "".join(tokens)  # numpy, as float(), reads other scripts' digits and 1_000
+        clean = (joined.isascii() and "_" not in joined and bool(np.all(np.isfinite(table)))
+                 and bool(np.all(np.abs(table) <= MAX_COORDINATE)))
     except ValueError:
         clean = False
     if not clean:

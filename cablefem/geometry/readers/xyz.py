@@ -13,6 +13,7 @@ import numpy as np
 
 from ...errors import InputError
 from ..triangulated import TriangulatedSurface
+from . import check_coordinates, parse_number
 
 
 def parse(lines):
@@ -26,12 +27,12 @@ def parse(lines):
         if len(fields) != 3:
             raise InputError(f"expected three numbers 'x y z', got {len(fields)} fields: {text!r}",
                              key=f"line {number}")
-        try:
-            values = [float(field) for field in fields]
-        except ValueError:
-            raise InputError(f"expected three numbers 'x y z', got {text!r}", key=f"line {number}") from None
+        values = [parse_number(field) for field in fields]
+        if None in values:
+            raise InputError(f"expected three numbers 'x y z', got {text!r}", key=f"line {number}")
         if not np.all(np.isfinite(values)):
             raise InputError(f"not a finite number in {text!r}", key=f"line {number}")
+        check_coordinates(values, f"line {number}", "x y z")
         points.append(values)
         numbers.append(number)
     return np.array(points, dtype=float).reshape(-1, 3), np.array(numbers, dtype=int)

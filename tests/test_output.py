@@ -1,0 +1,113 @@
+"""Output written whole or not at all (cablefem.io.output): atomic files with open()'s mode, the
+.pvd's swap (and its fallback), whole CSV rows after a failed write, signals held while files
+are written."""
+
+import errno
+import os
+import signal
+
+import numpy as np
+import pytest
+
+from cablefem.errors import OutputError, Terminated
+from cablefem.io import output
+from cablefem.io.vtk import TimeSeriesWriter, polyline_mesh, read_collection
+
+LINE = {"points": np.array([[0.0, 0, 0], [1.0, 0, 0]]), "tension": np.array([1.0, 2.0])}
+
+
+@pytest.mark.parametrize("swap", [True, False], ids=["renameat2", "rename"])
+def test_a_rerun_in_the_same_folder_lists_only_its_own_frames(tmp_path, monkeypatch, swap):
+    """The swap leaves the older, longer collection at the temporary name; the next, shorter one
+    must not keep its tail. Without the swap (file systems that lack it) the same holds."""
+    if not swap:
+        monkeypatch.setattr(output, "_exchange", None)
+    elif output._exchange is None:
+        pytest.skip("no renameat2 here")
+    first = TimeSeriesWriter(str(tmp_path), "run")
+    for k in range(30):
+        first.write(0.1 * k, polyline_mesh([LINE]))
+    first.close()
+    second = TimeSeriesWriter(str(tmp_path), "run")
+    listed = []
+    for k in range(3):
+        second.write(0.5 * k, polyline_mesh([LINE]))
+        listed.append(read_collection(tmp_path / "run.pvd")[0].tolist())
+    assert listed == [[0.0], [0.0, 0.5], [0.0, 0.5, 1.0]]
+    second.close()
+    assert not any(name.endswith(".partial") for name in os.listdir(tmp_path))
+
+
+def test_files_get_the_mode_open_gives(tmp_path):
+    previous = os.umask(0o027)
+    try:
+        output.write_atomic(str(tmp_path / "a.json"), "{}")
+        rows = output.RowsFile(str(tmp_path / "t.csv"), ["t"])
+        rows.close()
+        writer = TimeSeriesWriter(str(tmp_path), "run")
+        writer.write(0.0, polyline_mesh([LINE]))
+        writer.write(0.1, polyline_mesh([LINE]))  # the swapped collection
+        writer.close()
+        with open(tmp_path / "plain", "w"):
+            pass
+    finally:
+        os.umask(previous)
+    modes = {name: os.stat(tmp_path / name).st_mode & 0o777 for name in os.listdir(tmp_path)}
+    assert set(modes.values()) == {0o640}, modes  # 0o666 & ~0o027, as open() gave "plain"
+
+
+def test_a_failed_write_leaves_whole_rows_only(tmp_path, monkeypatch):
+    table = output.RowsFile(str(tmp_path / "t.csv"), ["t", "x"])
+    table.write([["0", "1"], ["1", "2"]])
+    real = os.write
+
+    def half_then_full(handle, data):  # the disk fills in the middle of a batch
+        monkeypatch.setattr(os, "write", full)
+        return real(handle, bytes(data)[:len(data) // 2])
+
+    def full(handle, data):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(os, "write", half_then_full)
+    with pytest.raises(OutputError, match="No space left on device"):
+        table.write([["2", "3"], ["3", "4"], ["4", "5"]])
+    monkeypatch.setattr(os, "write", real)
+    table.close()
+    assert (tmp_path / "t.csv").read_bytes() == b"t,x\r\n0,1\r\n1,2\r\n"
+
+
+def test_a_failed_atomic_write_keeps_the_old_file_and_no_temporary(tmp_path, monkeypatch):
+    output.write_atomic(str(tmp_path / "s.json"), "old")
+
+    def full(handle, data):
+        raise OSError(errno.EFBIG, os.strerror(errno.EFBIG))
+
+    monkeypatch.setattr(os, "write", full)
+    with pytest.raises(OutputError, match=f"{tmp_path / 's.json'}: cannot write: File too large"):
+        output.write_atomic(str(tmp_path / "s.json"), "new")
+    monkeypatch.undo()
+    assert os.listdir(tmp_path) == ["s.json"] and (tmp_path / "s.json").read_text() == "old"
+
+
+def test_signals_are_held_while_files_are_written_then_raised():
+    previous = output.raise_on_sigterm()
+    try:
+        done = []
+        with pytest.raises(Terminated):
+            with output.deferred_signals():
+                os.kill(os.getpid(), signal.SIGTERM)
+                done.append("written")
+        assert done == ["written"]
+        with pytest.raises(KeyboardInterrupt):
+            with output.deferred_signals():
+                os.kill(os.getpid(), signal.SIGINT)
+        with output.deferred_signals(reraise=False):
+            os.kill(os.getpid(), signal.SIGINT)  # recorded, not raised: another failure is on its way
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+    ignored = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        with output.deferred_signals():  # an ignored signal stays ignored
+            os.kill(os.getpid(), signal.SIGINT)
+    finally:
+        signal.signal(signal.SIGINT, ignored)
