@@ -45,7 +45,7 @@ def solve_scene_static(scene):
                                     fit_touchdown=scene.solver.fit_touchdown,
                                     tolerance=scene.solver.tolerance,
                                     max_iterations=scene.solver.max_iterations,
-                                    assembly=scene.solver.assembly)
+                                    assembly=scene.solver.assembly, sections=scene.load_settings)
         iterations += result.iterations
         results.append(result)
         reports.append(report(system, result.X))

@@ -276,16 +276,15 @@ class Integrator:
     def snapshot(self):
         """The state needed to undo steps (see ``restore``): the state, the scheme's memory and the
         committed history of the points."""
-        history = None if self.fused is None else (self.fused.points.full_old.copy(),
-                                                   self.fused.points.reduced_old.copy())
+        history = {rule: old.copy() for rule, (old, _) in self.system.history.items()}
         return (self.t, self.X, self.V, self.A, self.residual_rows, self.last_h, self.memory(), history)
 
     def restore(self, snapshot):
         """Go back to a ``snapshot``."""
         self.t, self.X, self.V, self.A, self.residual_rows, self.last_h, memory, history = snapshot
         self.set_memory(memory)
-        if history is not None:
-            self.fused.points.full_old[...], self.fused.points.reduced_old[...] = history
+        for rule, old in history.items():
+            self.system.history[rule][0][...] = old
 
     def memory(self):
         """What the scheme keeps of earlier steps (``snapshot``)."""

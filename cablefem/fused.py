@@ -66,7 +66,7 @@ class FusedEvaluator:
         self.mesh = kernels.Mesh(dofs, position, fem.full.phi, fem.full.dphi, fem.full.dx, fem.reduced.phi,
                                  fem.reduced.dphi, fem.reduced.dx, np.asarray(mass, dtype=float), self.kl, self.ku)
         nel, nq, nr = fem.n_elements, fem.full.dx.shape[1], fem.reduced.dx.shape[1]
-        self.points = kernels.points(pack_params(system.loads, nel), nel, nq, nr)
+        self.points = kernels.points(pack_params(system.loads, nel), system.history, nq, nr)
         # the branch state where the last Newton step started (``keep``), for the holds (``hold``)
         self.base_full = self.points.full_state.copy()
         self.base_reduced = self.points.reduced_state.copy()
@@ -121,11 +121,6 @@ class FusedEvaluator:
         """Hold no branch."""
         self.points.full_hold[...] = 0
         self.points.reduced_hold[...] = 0
-
-    def commit(self):
-        """Make the trial history of the last evaluation the committed one (an accepted step)."""
-        self.points.full_old[...] = self.points.full_new
-        self.points.reduced_old[...] = self.points.reduced_new
 
     def factorize(self, band, scale=1.0):
         """LU factors of scale x band (dgbtrf); None if singular."""

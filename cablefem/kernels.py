@@ -67,13 +67,14 @@ def records(dtype, shape):
     return np.zeros(shape, dtype=dtype)
 
 
-def points(params, nel, nq, nr):
-    """Fresh per-point records (``Points``) for ``params`` (nel,) with nq full and nr reduced points."""
-    L = LAYOUT
-    return Points(params, records(L.full_history, (nel, nq)), records(L.full_history, (nel, nq)),
-                  records(L.full_state, (nel, nq)), records(L.full_hold, (nel, nq)),
-                  records(L.reduced_history, (nel, nr)), records(L.reduced_history, (nel, nr)),
-                  records(L.reduced_state, (nel, nr)), records(L.reduced_hold, (nel, nr)))
+def points(params, history, nq, nr):
+    """Per-point records (``Points``) for ``params`` (nel,) with nq full and nr reduced points: the
+    history of a ``LineSystem`` (``system.history``, shared: the compiled and the numpy path commit
+    the same records), fresh branch state and holds."""
+    L, nel = LAYOUT, params.shape[0]
+    (full_old, full_new), (reduced_old, reduced_new) = history["full"], history["reduced"]
+    return Points(params, full_old, full_new, records(L.full_state, (nel, nq)), records(L.full_hold, (nel, nq)),
+                  reduced_old, reduced_new, records(L.reduced_state, (nel, nr)), records(L.reduced_hold, (nel, nr)))
 
 
 def work(nloc):

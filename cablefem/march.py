@@ -110,11 +110,11 @@ def _project(proj, X1, mesh, bed, derivatives):
                     acc += phi[l, e, g] * X1[dofs[e, l], a]
                 xyz[a, p] = acc
     if proj.kind == GRID:
-        _grid_project(xyz, proj.gx, proj.gy, proj.gz, True, out)
+        _grid_project(xyz, proj.gx, proj.gy, proj.gz, policy.FLAG[1], out)
     else:
         mode = walk.EVERYTHING if derivatives else walk.GAP_AND_DIRECTION
         lost = walk.project(xyz, proj.origin, proj.start, proj.start_h, proj.unheld, proj.rows, proj.across,
-                            proj.safe, proj.size, proj.typical, WALK_STEPS, True, mode, proj.triangle, proj.sth,
+                            proj.safe, proj.size, proj.typical, WALK_STEPS, policy.FLAG[1], mode, proj.triangle, proj.sth,
                             out)
         if lost != 0:
             return lost
@@ -172,18 +172,18 @@ def _assemble(prob, tangent, held, elements):
     return 0
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def evaluate(prob, tangent, held):
     return _assemble(prob, tangent, held, prob.all_elements)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def finish(prob):
     """The reactions need only the end rows: evaluate the two end elements."""
-    return _assemble(prob, False, False, prob.end_elements)
+    return _assemble(prob, policy.FLAG[0], policy.FLAG[0], prob.end_elements)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def norm(prob):
     total = 0.0
     for i in prob.free_nodes:
@@ -215,17 +215,17 @@ def increment(prob, refactor):
     return size
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def factors_current(prob):
     return prob.factors[0].c0 == prob.clock[0].c0
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def forget_factors(prob):
     prob.factors[0].c0 = np.nan
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def take_step(prob, fraction):
     """X1 = base + fraction step on the free unknowns (step in band order)."""
     _copy_rows(prob.X1, prob.base)
@@ -234,7 +234,7 @@ def take_step(prob, fraction):
             prob.X1[prob.free_order[j], a] += fraction * prob.step[3 * j + a]
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def set_base(prob):
     """The trial becomes Newton's base, with its branch state (the holds compare against it)."""
     _copy_rows(prob.base, prob.X1)
@@ -242,28 +242,28 @@ def set_base(prob):
         _copy_flat(dst, src)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def restore_base(prob):
     _copy_rows(prob.X1, prob.base)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def hold(prob, again):
     return kernels.hold_points(prob.pts, prob.base_full, prob.base_reduced, again)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def save_original(prob):
     _copy_flat(prob.original, prob.step)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def restore_original(prob):
     _copy_flat(prob.step, prob.original)
     return _largest(prob.original)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def begin(prob, h):
     """BDF2's coefficients for a step of h from the current state (backward Euler to start), its
     histories x_hist = c1 X + c2 Xp, v_hist = c1 V + c2 Vp, and the Taylor predictor X + h V + h^2/2 A
@@ -288,12 +288,12 @@ def begin(prob, h):
         guess[prob.anchor_node, a] = prob.anchor[a]
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def restart(prob):
     _copy_rows(prob.X1, prob.guess)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def accept(prob, h):
     """The trial is the new state at t + h: BDF2's memory moves on."""
     _copy_rows(prob.prediction, prob.guess)
@@ -308,43 +308,43 @@ def accept(prob, h):
     clock.t, clock.h_before, clock.last_h = clock.t + h, h, h
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def auto_left(prob):
     return prob.factors[0].auto_left
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def set_auto_left(prob, value):
     prob.factors[0].auto_left = value
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def count(prob, counter, amount):
     prob.counters[counter] += amount
     return prob.counters[counter]
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def time(prob):
     return prob.clock[0].t
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def last_step(prob):
     return prob.clock[0].last_h
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def record_residual(prob, value):
     prob.clock[0].residual = value
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def record_stop(prob, h):
     prob.clock[0].stopped = h
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def fairlead(prob, k, j, h):
     """The fairlead where step k's attempt ending at its j-th split (of FRACTIONS) puts it."""
     position = prob.fairlead[k] if j == FRACTIONS else prob.fractions[k, j - 1]
@@ -353,7 +353,7 @@ def fairlead(prob, k, j, h):
     return True
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def reactions(prob, forces, k):
     for a in range(3):
         forces[k, 0, a] = -prob.rows[prob.fairlead_node, a]

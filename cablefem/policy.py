@@ -42,6 +42,8 @@ import math
 from collections import namedtuple
 from types import FunctionType
 
+import numpy as np
+
 #: counters (``count``): steps, Newton iterations, residual evaluations, tangents, LU factorisations,
 #: failed attempts, branch corrections
 STEPS, ITERATIONS, NFEV, NJEV, NLU, REJECTED, CORRECTIONS = 0, 1, 2, 3, 4, 5, 6
@@ -62,6 +64,11 @@ FULL, MODIFIED, SWITCHING = 0, 1, 2
 #: ``fairlead`` can place the fairlead (0: anywhere)
 #: the ops a bound set calls (``bind``)
 ops = None
+#: False and True, and small whole numbers, as run-time values for the ops' arguments: numba compiles
+#: a callee once more for every literal argument (``evaluate(prob, True, False)`` was compiled four
+#: times, each with the whole kernel, and the first run's compilation took 2.5 min instead of ~1)
+FLAG = np.array([False, True])
+NUMBER = np.arange(8)
 
 Settings = namedtuple("Settings", "tolerance increment_tolerance max_iterations growth newton contraction "
                                   "min_damping min_dt auto_full_steps stretch max_corrections parts")
@@ -96,7 +103,7 @@ def newton(prob, reuse, max_corrections):
     for _ in range(int(settings.max_iterations)):
         with_tangent = fresh and damping == 1.0 and not damped and (
             base_norm < 0.0 or base_norm > math.sqrt(tolerance))
-        if ops.evaluate(prob, with_tangent, False) != 0:
+        if ops.evaluate(prob, with_tangent, FLAG[0]) != 0:
             return LOST, refreshed, norm
         norm = ops.norm(prob)
         if norm <= tolerance and previous >= 0.0:
@@ -106,14 +113,14 @@ def newton(prob, reuse, max_corrections):
                 if corrections == 0:
                     ops.save_original(prob)
                 corrections += 1
-                ops.count(prob, CORRECTIONS, 1)
+                ops.count(prob, NUMBER[CORRECTIONS], NUMBER[1])
                 ops.restore_base(prob)
-                ops.evaluate(prob, True, True)  # Newton again from the base on the new branches
-                size = ops.increment(prob, True)
+                ops.evaluate(prob, FLAG[1], FLAG[1])  # Newton again from the base on the new branches
+                size = ops.increment(prob, FLAG[1])
                 if not math.isfinite(size):
                     break
                 ops.take_step(prob, 1.0)
-                ops.count(prob, ITERATIONS, 1)
+                ops.count(prob, NUMBER[ITERATIONS], NUMBER[1])
                 previous = size
                 continue
             if damping == 1.0 and corrections > 0:  # no correction passed: the line search halves Newton's step
@@ -125,7 +132,7 @@ def newton(prob, reuse, max_corrections):
         if not math.isfinite(norm):
             break
         if fresh and not with_tangent:  # the same point again, with the tangent
-            ops.evaluate(prob, True, False)
+            ops.evaluate(prob, FLAG[1], FLAG[0])
         size = ops.increment(prob, fresh)
         if not math.isfinite(size):
             break
@@ -133,7 +140,7 @@ def newton(prob, reuse, max_corrections):
         base_norm, damping, damped = norm, 1.0, damping < 1.0
         corrections = 0
         ops.take_step(prob, 1.0)
-        ops.count(prob, ITERATIONS, 1)
+        ops.count(prob, NUMBER[ITERATIONS], NUMBER[1])
         rho = size / previous if previous > 0.0 else -1.0
         if (fresh and size <= settings.increment_tolerance) or (
                 0.0 <= rho < 1.0 and size * rho / (1 - rho) <= settings.increment_tolerance):
@@ -159,16 +166,16 @@ def attempt(prob, h):
     ops.begin(prob, h)
     reuse = mode == MODIFIED or (mode == SWITCHING and ops.auto_left(prob) <= 0.0)
     ops.restart(prob)
-    corrected = ops.count(prob, CORRECTIONS, 0)
+    corrected = ops.count(prob, NUMBER[CORRECTIONS], NUMBER[0])
     outcome, trouble, last = newton(prob, reuse, settings.max_corrections)
     if reuse and outcome == DIVERGED:  # once more from the start: modified with a fresh tangent, or full
         trouble = True
         ops.restart(prob)
         outcome, _, last = newton(prob, mode == MODIFIED, settings.max_corrections)
-    if outcome == DIVERGED and ops.count(prob, CORRECTIONS, 0) > corrected:  # corrected and failed: once more without
+    if outcome == DIVERGED and ops.count(prob, NUMBER[CORRECTIONS], NUMBER[0]) > corrected:  # corrected and failed: once more without
         ops.restart(prob)
         ops.forget_factors(prob)
-        outcome, _, last = newton(prob, mode == MODIFIED, 0)
+        outcome, _, last = newton(prob, mode == MODIFIED, NUMBER[0])
     ops.record_residual(prob, last)
     if mode == SWITCHING and outcome != LOST:
         if reuse and trouble:
@@ -213,13 +220,13 @@ def advance(prob, k, target, first):
             ops.record_stop(prob, h)
             return PROJECTION
         if outcome == DIVERGED:
-            ops.count(prob, REJECTED, 1)
+            ops.count(prob, NUMBER[REJECTED], NUMBER[1])
             if 0.5 * h < settings.min_dt:
                 ops.record_stop(prob, h)
                 return FAILED
             h *= 0.5
             continue
-        ops.count(prob, STEPS, 1)
+        ops.count(prob, NUMBER[STEPS], NUMBER[1])
         done += h
         h = target
     return DONE

@@ -89,8 +89,7 @@ def restart(prob):
 
 def accept(prob, h):
     prob.accept(h)
-    if prob.fused is not None:
-        prob.fused.commit()
+    prob.system.commit_history()  # the compiled kernel's records are the same arrays
 
 
 def auto_left(prob):

@@ -129,6 +129,22 @@ def line_fields(system, X, V=None, s=None, sampler=None):
     stiffness = system.contact.stiffness[element, 0]
     contact = (stiffness * np.maximum(-proj.gap, 0.0))[:, None] * proj.direction
     velocity = np.zeros_like(points) if V is None else sampler.evaluate(V)
-    return {"points": points, "tension": EA * np.maximum(stretch - 1.0, 0.0),
-            "strain": stretch - 1.0, "velocity": velocity, "seabed_gap": proj.gap,
-            "contact_force": contact}
+    fields = {"points": points, "tension": EA * np.maximum(stretch - 1.0, 0.0),
+              "strain": stretch - 1.0, "velocity": velocity, "seabed_gap": proj.gap,
+              "contact_force": contact}
+    fields.update(history_fields(system, element))
+    return fields
+
+
+def history_fields(system, element):
+    """The history fields the loads ask to see in frames (``LoadSpec.frames``), each point taking
+    the mean over the quadrature points of its element ``element`` (n,): ``<load>_<field>``."""
+    from .loads import catalog
+
+    fields = {}
+    for load in system.loads:
+        spec = catalog.spec_of(load)
+        old = system.history[spec.rule][0]
+        for name in spec.frames:
+            fields[f"{spec.name}_{name}"] = old[spec.name][name].mean(axis=1)[element]
+    return fields

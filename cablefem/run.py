@@ -29,32 +29,12 @@ from .statics import solve_static
 from .system import LineSystem
 
 
-def dynamic_loads(scene, props):
-    """The loads a time-domain run adds to tension, weight and contact: drag when there is a
-    drag coefficient or a current, added mass when there is an added-mass coefficient."""
-    from .loads.added_mass import AddedMass
-    from .loads.drag import Drag
-
-    loads = []
-    env = scene.environment
-    if np.any(props["Cd_normal"] > 0) or np.any(props["Cd_tangential"] > 0):
-        loads.append(Drag(props["diameter"], props["Cd_normal"], props["Cd_tangential"],
-                          env.water_density, env.current))
-    if np.any(props["Ca_normal"] > 0) or np.any(props["Ca_tangential"] > 0):
-        loads.append(AddedMass(props["diameter"], props["Ca_normal"], props["Ca_tangential"],
-                               env.water_density))
-    return loads
-
-
 def build_system(scene, line, dynamic=True, fem=None):
-    """The ``LineSystem`` of one line of a scene; ``dynamic`` adds drag, added mass and friction;
-    ``fem`` shares the FEM of another system of the same line."""
-    system = LineSystem(line, scene.seabed, scene.contact, scene.environment,
-                        assembly=scene.solver.assembly,
-                        friction=scene.friction if dynamic else None, fem=fem)
-    if dynamic:
-        system.loads.extend(dynamic_loads(scene, system.props))
-    return system
+    """The ``LineSystem`` of one line of a scene, its loads from the catalog; ``dynamic`` adds
+    friction, drag and added mass; ``fem`` shares the FEM of another system of the same line."""
+    return LineSystem(line, scene.seabed, scene.contact, scene.environment, assembly=scene.solver.assembly,
+                      friction=scene.friction if dynamic else None, fem=fem, dynamic=dynamic,
+                      sections=scene.load_settings)
 
 
 class FairleadPath:
@@ -80,15 +60,19 @@ def boundary_path(scene, line):
 
 def start_states(scene, t0=0.0, systems=None):
     """Static equilibrium of every line with its fairlead where the motion puts it at t0;
-    ``systems``: the lines' dynamic systems, whose FEM the static ones share."""
+    ``systems``: the lines' dynamic systems, whose FEM the static ones share and which start
+    from the statics' history of the points."""
     states, iterations = [], 0
     for k, line in enumerate(scene.lines):
         d0 = fairlead_motion(scene.motion, t0)[0]
         moved = Line(line.name, line.anchor, line.fairlead + d0, line.segments, line.order)
         fem = None if systems is None else systems[k].fem
-        result = solve_static(build_system(scene, moved, dynamic=False, fem=fem),
-                              tolerance=scene.solver.tolerance,
-                              max_iterations=scene.solver.max_iterations)
+        static = build_system(scene, moved, dynamic=False, fem=fem)
+        result = solve_static(static, tolerance=scene.solver.tolerance, max_iterations=scene.solver.max_iterations)
+        if systems is not None:
+            for rule, (old, new) in static.history.items():
+                systems[k].history[rule][0][...] = old
+                systems[k].history[rule][1][...] = old
         states.append(result.X)
         iterations += result.iterations
     return states, iterations

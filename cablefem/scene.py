@@ -120,6 +120,7 @@ class Scene:
     notes: list = field(default_factory=list)
     moordyn_options: dict = field(default_factory=dict)  # raw OPTIONS of a MoorDyn file (name -> text)
     keys: dict = field(default_factory=dict)
+    load_settings: dict = field(default_factory=dict)  # tables of the catalog's loads: section -> {key: value}
 
     def where(self, key):
         """(file, key) naming where scene key ``key`` was written (``Scene.keys``)."""

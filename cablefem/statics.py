@@ -171,6 +171,7 @@ def solve_static(system, X0=None, tolerance=1e-8, max_iterations=50):
     continuation on the seabed stiffness, each from the start."""
     start = time.perf_counter()
     X, slack = initial_shape(system) if X0 is None else (X0, False)
+    system.reset_history(X)  # a load's history starts at the start shape (``initial_history``)
     strategies = [("newton", lambda: _tension_only(system, X, tolerance, max_iterations, push=not slack)),
                   ("pseudo-transient", lambda: pseudo_transient(system, X, tolerance, 10 * max_iterations)),
                   ("settling", lambda: settle(system, X, tolerance, max_iterations)),
@@ -180,8 +181,9 @@ def solve_static(system, X0=None, tolerance=1e-8, max_iterations=50):
         X1, its, norm, hist, ok = strategy()
         total, history, best = total + its, history + hist, min(best, norm)
         if ok:
-            return StaticResult(X1, total, norm, history, name, time.perf_counter() - start, slack,
-                                scale_free_residual(system, X1))
+            increment = scale_free_residual(system, X1)  # evaluated at X1: the history's trial there
+            system.commit_history()
+            return StaticResult(X1, total, norm, history, name, time.perf_counter() - start, slack, increment)
     raise ConvergenceError(
         f"line '{system.line.name}': static solve did not converge: relative residual "
         f"{best:.3g} after {total} Newton iterations (tolerance {tolerance:g}); "
@@ -207,7 +209,7 @@ def settle(system, X, tolerance=1e-8, max_iterations=50):
                 env.water_density)
     added = AddedMass(props["diameter"], props["Ca_normal"], props["Ca_tangential"], env.water_density)
     moving = LineSystem(system.line, system.seabed, system.contact_settings, env, extra_loads=[drag, added],
-                        assembly=system.assembly, fem=system.fem)
+                        assembly=system.assembly, fem=system.fem, sections=system.setting.sections)
     fairlead = system.line.fairlead.copy()
     zero = np.zeros(3)
     integ = BDF2(moving, X, lambda t: (fairlead, zero, zero), dt=SETTLE_DT, tolerance=1e-6)

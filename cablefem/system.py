@@ -7,20 +7,21 @@ length is
 
 with the flux N and the force f summed over the loads. The line's own
 anchor and fairlead rows are the reactions: the force the line exerts on a
-support is -G at that vertex. "Model only what a scene needs": statics gets
-tension, weight and seabed contact; dynamics adds friction (``friction``, a
-``scene.Friction``) and, through ``extra_loads``, drag and added mass.
+support is -G at that vertex. "Model only what a scene needs": the loads come
+from the catalog (``cablefem.loads.catalog.build_loads``), each deciding from
+the ``Setting`` whether the line needs it (statics: tension, weight and seabed
+contact; dynamics adds friction, drag and added mass).
 """
+
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from . import forms
 from .fem import LineFEM
-from .loads import State, add
-from .loads.contact import SeabedContact
-from .loads.friction import friction_law
-from .loads.gravity import Weight
-from .loads.tension import Tension, axial_tension, strain
+from .loads import State, add, catalog
+from .loads.contact import contact_damping  # noqa: F401  (the scene's damping per element; tests use it here)
+from .loads.tension import axial_tension, strain
 
 
 def element_properties(line):
@@ -32,19 +33,34 @@ def element_properties(line):
     return {name: np.array([getattr(t, name) for t in types])[index] for name in names}
 
 
-def contact_damping(contact, props):
-    """Seabed damping per unit length [N s/m^2] per element: cBot d, or 2 G_c sqrt(G_K d m)."""
-    if contact.damping is not None:
-        return contact.damping * props["diameter"]
-    return 2.0 * contact.damping_ratio * np.sqrt(contact.stiffness * props["diameter"] * props["mass"])
+@dataclass(frozen=True)
+class Setting:
+    """What a load's builder (``LoadSpec.build``) sees of a scene for one line: its per-element
+    properties, the seabed, the scene's contact, environment and friction (None in statics),
+    whether the run is dynamic, the scene's load tables by section, and (``with_keys``) the table
+    of the load's own section."""
+
+    props: dict
+    seabed: object
+    contact: object
+    environment: object
+    friction: object = None
+    dynamic: bool = False
+    sections: dict = field(default_factory=dict)
+    keys: dict | None = None
+
+    def with_keys(self, keys):
+        return replace(self, keys=keys)
 
 
 class LineSystem:
     """Residual and tangent of one line over a seabed, for statics and dynamics; ``fem``: the
-    ``LineFEM`` of a line with the same segments and order, to share instead of building one."""
+    ``LineFEM`` of a line with the same segments and order, to share instead of building one.
+    ``friction`` (a ``scene.Friction``) and ``dynamic`` say what the catalog's loads build,
+    ``sections`` the scene's load tables; ``extra_loads`` are added after them."""
 
     def __init__(self, line, seabed, contact, environment, quadrature_points=None,
-                 extra_loads=(), assembly="kernel", friction=None, fem=None):
+                 extra_loads=(), assembly="kernel", friction=None, fem=None, dynamic=None, sections=None):
         self.line = line
         self.assembly = assembly
         self.contact_settings = contact  # the scene's ``Contact``, for another system of this line
@@ -52,13 +68,48 @@ class LineSystem:
         self.environment = environment
         # a line moved to another fairlead has the same mesh in arc length: its FEM can be shared
         self.fem = fem or LineFEM(line, quadrature_points)
-        self.props = props = element_properties(line)
-        self.tension = Tension(props["EA"], props["damping"])
-        self.weight = Weight(props["mass"], props["area"], environment.water_density, environment.gravity)
-        self.contact = SeabedContact(seabed, contact.stiffness * props["diameter"],
-                                     contact_damping(contact, props),
-                                     friction=None if friction is None else friction_law(friction))
-        self.loads = [self.tension, self.weight, self.contact, *extra_loads]
+        self.props = element_properties(line)
+        self.setting = Setting(self.props, seabed, contact, environment, friction,
+                               friction is not None if dynamic is None else dynamic, dict(sections or {}))
+        self.loads = catalog.build_loads(self.setting) + list(extra_loads)
+        self.history = _history_records(self.fem)  # {"full": (old, new), "reduced": (old, new)}
+        self.reset_history(None)
+
+    def load(self, name):
+        """The system's load of catalog name ``name`` (the first, if a test added another)."""
+        for load in self.loads:
+            if catalog.spec_of(load).name == name:
+                return load
+        raise KeyError(f"line '{self.line.name}' has no '{name}' load")
+
+    tension = property(lambda self: self.load("tension"))
+    weight = property(lambda self: self.load("weight"))
+    contact = property(lambda self: self.load("contact"))
+
+    def reset_history(self, X):
+        """Start the history of every point afresh: zero, or what a load's ``initial_history(state)``
+        says at state X (N, 3) (None: zero)."""
+        for old, new in self.history.values():
+            old[...] = 0
+            new[...] = 0
+        if X is None:
+            return
+        state = self.state(X)
+        for load in self.loads:
+            start = getattr(load, "initial_history", None)
+            if start is None:
+                continue
+            name = catalog.spec_of(load).name
+            rule = getattr(load, "rule", "full")
+            old, new = self.history[rule]
+            for key, value in start(state.reduced if rule == "reduced" else state).items():
+                old[name][key] = value
+                new[name][key] = value
+
+    def commit_history(self):
+        """Make the trial history the committed one (an accepted step or load increment)."""
+        for old, new in self.history.values():
+            old[...] = new
 
     @property
     def fixed_rows(self):
@@ -82,7 +133,8 @@ class LineSystem:
                 v, dv = rest.pop(0)
             if A is not None:
                 a = rest.pop(0)[0]
-            states.append(State(r, dr, v, dv, a, t))
+            old, new = self.history["full" if rule is self.fem.full else "reduced"]
+            states.append(State(r, dr, v, dv, a, t, old=old, new=new))
         full, reduced = states
         full.reduced = reduced
         return full
@@ -187,3 +239,12 @@ def _combine(base, rate, velocity_factor, accel, acceleration_factor):
     if accel is not None and acceleration_factor:
         block = add(block, acceleration_factor * accel)
     return block
+
+
+def _history_records(fem):
+    """Committed and trial history records of a line's full and reduced points (the catalog's
+    history dtypes, ``cablefem.loads.catalog.Layout``), shared with the compiled path."""
+    layout = catalog.layout()
+    nel, nq, nr = fem.n_elements, fem.full.dx.shape[1], fem.reduced.dx.shape[1]
+    return {"full": (np.zeros((nel, nq), layout.full_history), np.zeros((nel, nq), layout.full_history)),
+            "reduced": (np.zeros((nel, nr), layout.reduced_history), np.zeros((nel, nr), layout.reduced_history))}

@@ -13,7 +13,7 @@ from .statics import StaticResult, _tension_only, scale_free_residual, solve_sta
 
 
 def solve_line(line, seabed, contact, environment, fit_touchdown=True, tolerance=1e-8,
-               max_iterations=50, assembly="kernel", max_fits=4):
+               max_iterations=50, assembly="kernel", max_fits=4, sections=None):
     """Static equilibrium of one line; returns (LineSystem, StaticResult).
 
     The solution has a jump of curvature at the touchdown point (straight on the seabed,
@@ -24,12 +24,13 @@ def solve_line(line, seabed, contact, environment, fit_touchdown=True, tolerance
     order pays off (verification/elastic_catenary). The touchdown is located from the
     seabed's total reaction: on a frictionless plane the resting part carries exactly its own
     normal weight, so the reaction fixes the resting length, where the place at which the
-    gap changes sign (tangent to the seabed there) is ill-conditioned.
+    gap changes sign (tangent to the seabed there) is ill-conditioned. ``sections``: the scene's
+    tables of the catalog's loads (``Scene.load_settings``).
     """
     from .system import LineSystem
 
     def build(candidate):
-        return LineSystem(candidate, seabed, contact, environment, assembly=assembly)
+        return LineSystem(candidate, seabed, contact, environment, assembly=assembly, sections=sections)
 
     system = build(line)
     if fit_touchdown:

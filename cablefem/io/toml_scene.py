@@ -23,6 +23,7 @@ except ModuleNotFoundError:  # Python 3.10
 import numpy as np
 
 from ..errors import InputError
+from ..loads import catalog
 from ..geometry import Horizontal, Plane
 from ..geometry.readers import MAX_COORDINATE, parse_number
 from ..line import Line, LineType, Segment
@@ -102,7 +103,7 @@ def read_toml_scene(path, data=None):
     path = os.path.abspath(path)
     folder = os.path.dirname(path)
     data = parse_toml(path) if data is None else data
-    v.check_keys(data, TOP_LEVEL_KEYS, "")
+    v.check_keys(data, TOP_LEVEL_KEYS + tuple(catalog.sections()), "")
     name = v.text(data["name"], "name") if "name" in data else os.path.splitext(os.path.basename(path))[0]
     notes = []
     keys = {} if "name" in data else {"name": (path, "name (from the file name)")}
@@ -115,7 +116,7 @@ def read_toml_scene(path, data=None):
         notes += kept + [f"lines, line types and options from {base.source}; TOML keys override"]
     else:
         base = None
-        v.check_keys(data, TOP_LEVEL_KEYS, "", required=("line_types", "lines", "seabed"))
+        v.check_keys(data, TOP_LEVEL_KEYS + tuple(catalog.sections()), "", required=("line_types", "lines", "seabed"))
         lines = _lines(data["lines"], _line_types(data["line_types"]))
     environment = replace(base.environment if base else Environment(),
                           **_section(data, "environment", ENVIRONMENT_KEYS))
@@ -130,9 +131,12 @@ def read_toml_scene(path, data=None):
     solver = replace(base.solver if base else Solver(), **_section(data, "solver", SOLVER_KEYS))
     output = replace(Output(), **_section(data, "output", OUTPUT_KEYS))
     notes.append(seabed_note)
+    load_settings = {section: _section(data, section, converters)
+                     for section, converters in catalog.sections().items() if section in data}
     return Scene(name=name, lines=lines, seabed=seabed, contact=contact, environment=environment,
                  friction=friction, motion=motion, solver=solver, output=output, source=path,
-                 notes=notes, moordyn_options=dict(base.moordyn_options) if base else {}, keys=keys)
+                 notes=notes, moordyn_options=dict(base.moordyn_options) if base else {}, keys=keys,
+                 load_settings=load_settings)
 
 
 def _section(data, name, converters):

@@ -19,6 +19,9 @@ class State:
     r: position, dr: dr/ds; v, dv: velocity and its s-derivative (None in
     statics); a: acceleration (None unless an integrator supplies it); t: time [s].
     A load evaluated at the reduced quadrature (``rule = "reduced"``) gets ``reduced``.
+    old, new: the history of the points (record arrays (nel, nq) of the catalog's history
+    dtype, ``cablefem.loads.catalog``): a load with history reads its committed values from
+    ``old[name]`` and writes its trial values to ``new[name]``.
     """
 
     r: np.ndarray
@@ -28,6 +31,8 @@ class State:
     a: np.ndarray | None = None
     t: float = 0.0
     reduced: "State | None" = None  # the same kinematics at the reduced quadrature points
+    old: np.ndarray | None = None
+    new: np.ndarray | None = None
 
 
 @dataclass
@@ -97,7 +102,11 @@ class LoadSpec:
     evaluation / read / read from ``old`` and written to ``new``, committed on accepted steps);
     hold_rule: compiled ``rule(base, state, hold, p, again) -> (held, changed)`` choosing the
     holds after a rejected Newton step, or None; scratch: (3 x 3 matrices, 3-vectors) the kernel
-    uses; reference: the numpy face's class; frames: history fields written to VTK frames."""
+    uses; reference: the numpy face's class; frames: history fields written to VTK frames;
+    build: ``build(setting) -> load or None``, the load a line of a scene gets
+    (``cablefem.system.Setting``; None: the scene does not need it); section and keys: the scene
+    table the load reads (``[section]`` in TOML) and its keys with their converters
+    (``cablefem.io.validate``), which ``setting.keys`` holds."""
 
     name: str
     rule: str
@@ -110,3 +119,6 @@ class LoadSpec:
     hold_rule: object = None
     scratch: tuple = (0, 0)
     frames: tuple = field(default=())
+    build: object = None
+    section: str | None = None
+    keys: dict = field(default_factory=dict)

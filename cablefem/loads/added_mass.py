@@ -84,5 +84,13 @@ def added_mass_point(ctx, p, old, new, state, hold, out, M, u):
             Bb[i, j] += per[i] * t[j] + diff * (along * P[i, j] + t[i] * (acc[j] - along * t[j]))
 
 
+def build(setting):
+    """Added mass in dynamics, when an added-mass coefficient is not zero."""
+    props = setting.props
+    if not setting.dynamic or not (np.any(props["Ca_normal"] > 0) or np.any(props["Ca_tangential"] > 0)):
+        return None
+    return AddedMass(props["diameter"], props["Ca_normal"], props["Ca_tangential"], setting.environment.water_density)
+
+
 SPEC = LoadSpec("added_mass", "full", (("normal", "f8"), ("tangential", "f8")), added_mass_point, AddedMass,
-                scratch=(0, 1))
+                scratch=(0, 1), build=build)

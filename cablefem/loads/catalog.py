@@ -60,6 +60,25 @@ def spec_of(load):
                     "load needs a compiled face and one catalog line (docs/architecture.md)")
 
 
+def build_loads(setting):
+    """The loads a line of a scene gets, in catalog order: every spec's ``build(setting)`` that
+    gives one (``setting.keys`` is the scene's table of the spec's section, or None)."""
+    loads = []
+    for entry in CATALOG:
+        if entry.build is None:
+            continue
+        keys = setting.sections.get(entry.section) if entry.section else None
+        load = entry.build(setting.with_keys(keys))
+        if load is not None:
+            loads.append(load)
+    return loads
+
+
+def sections():
+    """The scene tables the catalog's loads read: {section: {key: converter}}."""
+    return {entry.section: entry.keys for entry in CATALOG if entry.section}
+
+
 def _record(parts):
     """A nested, aligned record dtype from (name, fields) pairs, the empty ones left out."""
     fields = [(name, np.dtype(list(entries), align=True)) for name, entries in parts if entries]

@@ -355,9 +355,26 @@ def contact_hold(base, state, hold, p, again):
     return flag != 0, changed
 
 
+def build(setting):
+    """Every line rests on the seabed: the scene's contact, with friction in dynamics."""
+    from .friction import friction_law
+
+    props, contact = setting.props, setting.contact
+    friction = None if setting.friction is None else friction_law(setting.friction)
+    return SeabedContact(setting.seabed, contact.stiffness * props["diameter"], contact_damping(contact, props),
+                         friction=friction)
+
+
+def contact_damping(contact, props):
+    """Seabed damping per unit length [N s/m^2] per element: cBot d, or 2 G_c sqrt(G_K d m)."""
+    if contact.damping is not None:
+        return contact.damping * props["diameter"]
+    return 2.0 * contact.damping_ratio * np.sqrt(contact.stiffness * props["diameter"] * props["mass"])
+
+
 SPEC = LoadSpec("contact", "full",
                 (("k", "f8"), ("c", "f8"), ("model", "i8"), ("mu", "f8"), ("mu_axial", "f8"),
                  ("mu_transverse", "f8"), ("scale", "f8"), ("vc", "f8")),
                 contact_point, SeabedContact,
                 state=(("bits", "i1"), ("slip", "f8", (3,))), hold=(("bits", "i1"),), hold_rule=contact_hold,
-                scratch=(11, 10))
+                scratch=(11, 10), build=build)

@@ -139,5 +139,13 @@ def drag_point(ctx, p, old, new, state, hold, out, M, u):
                 - axial * (2.0 * t[i] * un[j] + along * P[i, j]) - per[i] * t[j]
 
 
+def build(setting):
+    """Drag in dynamics, when a drag coefficient is not zero."""
+    props, env = setting.props, setting.environment
+    if not setting.dynamic or not (np.any(props["Cd_normal"] > 0) or np.any(props["Cd_tangential"] > 0)):
+        return None
+    return Drag(props["diameter"], props["Cd_normal"], props["Cd_tangential"], env.water_density, env.current)
+
+
 SPEC = LoadSpec("drag", "full", (("normal", "f8"), ("tangential", "f8"), ("current", "f8", (3,))), drag_point, Drag,
-                scratch=(0, 3))
+                scratch=(0, 3), build=build)

@@ -105,4 +105,11 @@ def weight_point(ctx, p, old, new, state, hold, out, M, u):
         out.A[2, 2] += -w.buoyancy * slope
 
 
-SPEC = LoadSpec("weight", "full", (("dry", "f8"), ("buoyancy", "f8"), ("diameter", "f8")), weight_point, Weight)
+def build(setting):
+    """Every line has weight and buoyancy."""
+    env = setting.environment
+    return Weight(setting.props["mass"], setting.props["area"], env.water_density, env.gravity)
+
+
+SPEC = LoadSpec("weight", "full", (("dry", "f8"), ("buoyancy", "f8"), ("diameter", "f8")), weight_point, Weight,
+                build=build)

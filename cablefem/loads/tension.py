@@ -136,5 +136,10 @@ def tension_hold(base, state, hold, p, again):
     return flag, changed
 
 
+def build(setting):
+    """Every line carries its tension."""
+    return Tension(setting.props["EA"], setting.props["damping"])
+
+
 SPEC = LoadSpec("tension", "reduced", (("EA", "f8"), ("beta", "f8"), ("pushes", "?")), tension_point, Tension,
-                state=(("taut", "?"),), hold=(("pull", "?"),), hold_rule=tension_hold)
+                state=(("taut", "?"),), hold=(("pull", "?"),), hold_rule=tension_hold, build=build)

@@ -1,0 +1,103 @@
+"""The load catalog (issue 15): for every load in it, the compiled face equals the numpy face
+(residual and tangent to round-off) and the numpy face's tangent equals finite differences; the
+records are laid out by name, and a load the catalog does not know is refused loudly."""
+
+import numpy as np
+import pytest
+
+from cablefem.fused import FusedEvaluator, pack_params
+from cablefem.geometry import Plane
+from cablefem.loads import catalog
+from cablefem.loads.friction import IsotropicFriction
+
+from test_loads import line_state, system_with_all_loads
+
+NAMES = [spec.name for spec in catalog.CATALOG]
+SEABED = Plane.from_slope([-600.0, 0.0, -100.0], np.radians(20.0), np.pi / 2)
+LAW = IsotropicFriction(0.3, 1.2, 0.05)
+
+
+def one_load_system(name, order):
+    """The soft rope of test_loads with drag, added mass, contact and friction, keeping one load."""
+    system = system_with_all_loads(SEABED, LAW, order)
+    loads = [load for load in system.loads if catalog.spec_of(load).name == name]
+    system.loads = loads[-1:]  # contact: the test's own (the catalog's has no stiffness here)
+    return system
+
+
+def reference(system, X, V, A, v_x, a_x):
+    """Rows M A + G and the dense free tangent K + a_x M of the numpy face."""
+    fem = system.fem
+    M = fem.vector_mass(system.props["mass"], free_only=False)
+    R, blocks = system.evaluate(system.state(X, V, A), True, v_x, a_x)
+    K = system.matrix(blocks) + a_x * fem.vector_mass(system.props["mass"])
+    return R + (M @ A.ravel()).reshape(A.shape), K.toarray()
+
+
+@pytest.mark.parametrize("order", [1, 2, 3])
+@pytest.mark.parametrize("name", NAMES)
+def test_compiled_face_equals_the_numpy_face(name, order, rng):
+    system = one_load_system(name, order)
+    state, X, V, A = line_state(system, rng, LAW)
+    fused = FusedEvaluator.for_system(system, system.props["mass"])
+    rows_ref, K_ref = reference(system, X, V, A, 150.0, 2.2e4)
+    rows, band = fused.evaluate(X, V, A, 150.0, 2.2e4)
+    # the same sums in another order: equal to round-off
+    np.testing.assert_allclose(rows, rows_ref, rtol=0, atol=1e-12 * np.abs(rows_ref).max())
+    np.testing.assert_allclose(fused.dense(band), K_ref, rtol=0, atol=1e-12 * np.abs(K_ref).max())
+
+
+@pytest.mark.parametrize("order", [1, 2])
+@pytest.mark.parametrize("name", NAMES)
+def test_numpy_face_tangent_matches_finite_differences(name, order, rng):
+    system = one_load_system(name, order)
+    state, X, V, A = line_state(system, rng, LAW)
+
+    def residual(dX, dV, dA):
+        return system.residual(X + dX, V + dV, A + dA).ravel()
+
+    def tangent(cv, ca):
+        return system.matrix(system.evaluate(state, velocity_factor=cv, acceleration_factor=ca)[1],
+                             free_only=False).toarray()
+
+    K0 = tangent(0.0, 0.0)
+    cv, ca = 150.0, 2.0e4
+    zero = np.zeros_like(X)
+    for matrix, step, h in ((K0, lambda d: (d, zero, zero), 1e-5),
+                            (tangent(1.0, 0.0) - K0, lambda d: (zero, d, zero), 1e-7),
+                            (tangent(0.0, 1.0) - K0, lambda d: (zero, zero, d), 1e-5),
+                            (tangent(cv, ca), lambda d: (d, cv * d, ca * d), 1e-7)):
+        for d in rng.standard_normal((2, *X.shape)):
+            fd = (residual(*(h * x for x in step(d))) - residual(*(-h * x for x in step(d)))) / (2 * h)
+            # O(h^2) truncation and ~1e-16 |R| / h round-off, both < 1e-6 of |K d| (test_loads)
+            np.testing.assert_allclose(matrix @ d.ravel(), fd, rtol=0, atol=1e-6 * max(np.abs(fd).max(), 1e-300))
+
+
+def test_every_load_has_its_parameters_by_name_in_the_element_record():
+    layout = catalog.layout()
+    for spec in catalog.CATALOG:
+        fields = layout.params[spec.name].names
+        assert fields == ("active",) + tuple(entry[0] for entry in spec.params)
+        assert spec.reference.name == spec.name  # the numpy face names its catalog entry
+
+
+def test_a_load_declaring_other_parameters_than_it_gives_is_refused():
+    system = one_load_system("drag", 1)
+
+    class Renamed(type(system.loads[0])):
+        def params(self):
+            values = super().params()
+            values["normal_typo"] = values.pop("normal")
+            return values
+
+    load = system.loads[0]
+    load.__class__ = Renamed
+    with pytest.raises(ValueError, match="params\\(\\) gives .*normal_typo"):
+        pack_params([load], system.fem.n_elements)
+
+
+def test_registering_a_load_after_the_kernels_were_built_is_refused():
+    import cablefem.kernels  # noqa: F401  (builds them)
+
+    with pytest.raises(RuntimeError, match="register loads before anything compiles"):
+        catalog.register(catalog.CATALOG[0])
