@@ -10,7 +10,7 @@ from cablefem.geometry import Plane
 from cablefem.loads import catalog
 from cablefem.loads.friction import IsotropicFriction
 
-from test_loads import line_state, system_with_all_loads
+from test_loads import assert_tangent_matches_finite_differences, line_state, system_with_all_loads
 
 NAMES = [spec.name for spec in catalog.CATALOG]
 SEABED = Plane.from_slope([-600.0, 0.0, -100.0], np.radians(20.0), np.pi / 2)
@@ -53,24 +53,7 @@ def test_numpy_face_tangent_matches_finite_differences(name, order, rng):
     system = one_load_system(name, order)
     state, X, V, A = line_state(system, rng, LAW)
 
-    def residual(dX, dV, dA):
-        return system.residual(X + dX, V + dV, A + dA).ravel()
-
-    def tangent(cv, ca):
-        return system.matrix(system.evaluate(state, velocity_factor=cv, acceleration_factor=ca)[1],
-                             free_only=False).toarray()
-
-    K0 = tangent(0.0, 0.0)
-    cv, ca = 150.0, 2.0e4
-    zero = np.zeros_like(X)
-    for matrix, step, h in ((K0, lambda d: (d, zero, zero), 1e-5),
-                            (tangent(1.0, 0.0) - K0, lambda d: (zero, d, zero), 1e-7),
-                            (tangent(0.0, 1.0) - K0, lambda d: (zero, zero, d), 1e-5),
-                            (tangent(cv, ca), lambda d: (d, cv * d, ca * d), 1e-7)):
-        for d in rng.standard_normal((2, *X.shape)):
-            fd = (residual(*(h * x for x in step(d))) - residual(*(-h * x for x in step(d)))) / (2 * h)
-            # O(h^2) truncation and ~1e-16 |R| / h round-off, both < 1e-6 of |K d| (test_loads)
-            np.testing.assert_allclose(matrix @ d.ravel(), fd, rtol=0, atol=1e-6 * max(np.abs(fd).max(), 1e-300))
+    assert_tangent_matches_finite_differences(system, state, X, V, A, rng.standard_normal((2, *X.shape)))
 
 
 def test_every_load_has_its_parameters_by_name_in_the_element_record():

@@ -374,6 +374,13 @@ def test_line_system_tangent_with_all_dynamic_loads_matches_finite_differences(r
     # tension away from its e = 0 kink (and T > 0: beta de/dt is below 1e-3 here)
     assert np.linalg.norm(state.dr, axis=0).min() > 1.01
 
+    assert_tangent_matches_finite_differences(system, state, X, V, A, rng.standard_normal((3, *X.shape)))
+
+
+def assert_tangent_matches_finite_differences(system, state, X, V, A, directions):
+    """The assembled tangent of ``system`` (dG/dX, dG/dV, dG/dA and a BDF2-like combination)
+    against central differences of its residual along ``directions`` (k, N, 3)."""
+
     def residual(dX, dV, dA):
         return system.residual(X + dX, V + dV, A + dA).ravel()
 
@@ -383,7 +390,6 @@ def test_line_system_tangent_with_all_dynamic_loads_matches_finite_differences(r
 
     K0 = tangent(0.0, 0.0)
     cv, ca = 150.0, 2.0e4  # BDF2-like factors for dt = 0.01 s
-    directions = rng.standard_normal((3, *X.shape))
     zero = np.zeros_like(X)
     # steps: 1e-5 where only X or A moves (round-off of |r - c| ~ 5000 m on the bowl needs a
     # large h; the residual is linear in A), 1e-7 where V moves (cv h |d| < MARGIN)
