@@ -2,8 +2,10 @@
 processes, a `dask scheduler` and a `dask worker` started as separate processes, an interrupted
 sweep resumed, a case that fails. The runs are 2 s of the flume chain on 10 and 20 elements."""
 
+import dataclasses
 import json
 import os
+import shutil
 import socket
 import subprocess
 import sys
@@ -42,7 +44,7 @@ axes = {{ "lines[*].segments[*].elements" = [10, 20] }}
 """
 #: columns that differ between any two runs: timings, and the bytes written (summary.json and
 #: static.json hold a wall time)
-TIMINGS = ("wall_time_s", "run_wall_time_s", "output_bytes")
+TIMINGS = ("wall_time_s", "cpu_time_s", "run_wall_time_s", "output_bytes")
 
 
 def write(folder, name, text):
@@ -102,6 +104,18 @@ def test_python_api_runs_the_same_case_as_the_sweep_file(local, tmp_path, dask_c
     assert row["case_id"] == same["case_id"]  # the identity is the scene's, however the sweep was written
     assert row["line1:fairlead_tension_max"] == same["line1:fairlead_tension_max"]
     assert row["line1:fatigue_damage"] == same["line1:fatigue_damage"]
+
+
+def test_new_statistics_settings_recompute_done_rows_without_running_them(local, tmp_path, dask_client):
+    spec, table, out = local
+    shutil.copytree(out, tmp_path, dirs_exist_ok=True)
+    later = dataclasses.replace(spec, stats_from=1.0, fatigue=None)
+    again = run(later, out=str(tmp_path), client=dask_client)
+    assert again.attrs["sweep"]["ran"] == 0 and again.attrs["sweep"]["skipped"] == len(spec.cases)
+    dynamic = again["kind"] == "dynamic"
+    assert (again["line1:fairlead_tension_min_t"][dynamic] >= 1.0).all()
+    assert "line1:fatigue_damage" not in again.columns
+    assert again["line1:fairlead_tension"][~dynamic].equals(table["line1:fairlead_tension"][~dynamic])
 
 
 def free_port():

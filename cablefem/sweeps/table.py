@@ -3,7 +3,8 @@
 Columns, in this order: ``case`` (its number in the sweep), ``case_id`` (its identity, also the
 name of its folder ``cases/<case_id>``), ``kind``, ``status`` (ok | failed | lost), ``error``
 (one line, or empty), the ``tag.*`` labels, the parameters (one column per key path the sweep
-sets, e.g. ``motion.period``; arrays as JSON text), ``wall_time_s`` and ``output_bytes``, then
+sets, e.g. ``motion.period``; arrays as JSON text), ``wall_time_s``, ``cpu_time_s`` and
+``output_bytes``, then
 what the run gave (docs/sweep.md: per line ``<line>:fairlead_tension_max`` ... for dynamic runs,
 ``<line>:fairlead_tension`` ... for static ones), and ``dir``.
 """
@@ -28,7 +29,7 @@ def make_table(sweep, rows):
                   "status": row.pop("status"), "error": row.pop("error", None)}
         record.update(case.tags)
         record.update({path: _cell(value) for path, value in case.params.items()})
-        record.update({key: row.pop(key, None) for key in ("wall_time_s", "output_bytes")})
+        record.update({key: row.pop(key, None) for key in ("wall_time_s", "cpu_time_s", "output_bytes")})
         record.update(row)
         record["dir"] = f"cases/{case.case_id}"
         records.append(record)

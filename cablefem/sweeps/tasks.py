@@ -40,11 +40,11 @@ def task_of(case, sweep, folder):
 
 def run_task(task):
     """Run one case (``task_of``) and return its row: status "ok" or "failed" with the error on
-    one line, the task's wall time [s], the bytes it wrote, and the kind's columns; the row is
-    also written to the case folder's ``row.json``."""
+    one line, the task's wall time and its worker process's CPU time [s], the bytes it wrote, and
+    the kind's columns; the row is also written to the case folder's ``row.json``."""
     from ..io.toml_scene import read_toml_scene
 
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     folder = task["dir"]
     shutil.rmtree(folder, ignore_errors=True)  # what an interrupted attempt left
     os.makedirs(folder)
@@ -64,6 +64,7 @@ def run_task(task):
     except Exception as error:  # noqa: BLE001 - any failure of a case is a row of the table
         row.update(status="failed", error=f"{type(error).__name__}: {one_line(error)}")
     row["wall_time_s"] = time.perf_counter() - start
+    row["cpu_time_s"] = time.process_time() - cpu  # below wall_time_s: the worker did not have a core to itself
     row["output_bytes"] = folder_bytes(folder)
     write_atomic(os.path.join(folder, MARKER), json.dumps({"case_id": task["case_id"], "post": task["post"],
                                                            "row": row}))
@@ -159,6 +160,7 @@ def read_marker(task):
         from ..io.toml_scene import read_toml_scene
 
         scene = read_toml_scene(task["base"], task["data"])
+        row = {key: value for key, value in row.items() if ":" not in key}  # the per-line columns go
         row.update(series_columns(scene, task["dir"], task["stats_from"], task["fatigue"]))
         write_atomic(path, json.dumps(dict(marker, post=task["post"], row=row)))
     return row
