@@ -87,3 +87,15 @@ def test_fatigue_damage_of_a_sine_is_miners_sum_of_its_cycles():
     # a fourth of the window: a fourth of the damage
     assert fatigue_damage(t, tension, 0.061, 6.0e10, 3.0, t_from=75.0)["damage"] == pytest.approx(
         damage["damage"] / 4, rel=1e-9)
+
+
+SHIPPED = sorted([*ROOT.glob("examples/sweeps/*.toml"), *ROOT.glob("verification/*/sweep*.toml"),
+                  *(p for p in ROOT.glob("validation/flume/*.toml") if p.name != "flume.toml")])
+
+
+@pytest.mark.parametrize("path", SHIPPED, ids=lambda p: str(p.relative_to(ROOT)))
+def test_shipped_sweep_files_are_valid(path):
+    from cablefem.sweeps import read_sweep
+
+    spec = read_sweep(path)
+    assert spec.cases and len({c.case_id for c in spec.cases}) <= len(spec.cases)
