@@ -263,30 +263,7 @@ def references_and_sweeps(motion, spec, runs, entry, log=print):
         log(f"  MoorDyn {settings.label()} without its IC solve against with it (threshIC 1e-5): "
             f"{entry['references']['moordyn_ic_check']['change']:.1e}")
 
-    limit = 2.0 * float(np.max(cf_ref["tension"]))
-    moordyn_rows, attempts = [], []
-    for segments, keep in spec["moordyn_segments"].items():
-        found = 0
-        for dtM in moordyn_candidates(segments):
-            settings = MoordynSettings(segments, dtM)
-            result = run_moordyn(motion, duration, settings, tension_limit=limit)
-            if result["stable"]:
-                result = least_time(lambda: run_moordyn(motion, duration, settings, tension_limit=limit),
-                                    spec.get("repeats", REPEATS))
-            attempts.append({"segments": segments, "dtM": dtM, "stable": result["stable"],
-                             "wall_time_s": result["wall_time_s"]})
-            if not result["stable"]:
-                continue
-            row = {"label": settings.label(), "settings": asdict(settings), "wall_time_s": result["wall_time_s"],
-                   "peer_wall_time_s": result["peer_wall_time_s"], "error": error_against(result, md_ref, t_from),
-                   "error_vs_cablefem_reference": error_against(result, cf_ref, t_from),
-                   "largest_stable_dtM": found == 0, "repeats": result["repeats"]}
-            moordyn_rows.append(row)
-            log(f"  MoorDyn {row['label']:<28} error {row['error']:.2e} ({row['error_vs_cablefem_reference']:.2e} "
-                f"vs cablefem's) {row['wall_time_s']:7.2f} s (peer {row['peer_wall_time_s']:.2f} s)")
-            found += 1
-            if found == keep:
-                break
+    moordyn_rows, attempts = moordyn_sweep(motion, spec, duration, md_ref, cf_ref, t_from, log)
     entry["moordyn_attempts"] = attempts
     entry["moordyn"] = moordyn_rows
     # MoorDyn's reference against the next finest run (most segments below it, smallest dtM)
@@ -311,6 +288,36 @@ def references_and_sweeps(motion, spec, runs, entry, log=print):
                        "cablefem": [r["label"] for r in pareto(cablefem_rows)]}
     entry["ratios"] = ratios(moordyn_rows, cablefem_rows)
     entry["series"] = {"cablefem_reference": cf_ref, "moordyn_reference": md_ref}
+
+
+def moordyn_sweep(motion, spec, duration, md_ref, cf_ref, t_from, log=print):
+    """MoorDyn at each segment count of ``spec``, from its largest stable dtM down, keeping as many
+    stable runs as the spec says: (rows with errors against both references, every attempt)."""
+    limit = 2.0 * float(np.max(cf_ref["tension"]))
+    moordyn_rows, attempts = [], []
+    for segments, keep in spec["moordyn_segments"].items():
+        found = 0
+        for dtM in moordyn_candidates(segments):
+            settings = MoordynSettings(segments, dtM)
+            result = run_moordyn(motion, duration, settings, tension_limit=limit)
+            if result["stable"]:
+                result = least_time(lambda: run_moordyn(motion, duration, settings, tension_limit=limit),
+                                    spec.get("repeats", REPEATS))
+            attempts.append({"segments": segments, "dtM": dtM, "stable": result["stable"],
+                             "wall_time_s": result["wall_time_s"]})
+            if not result["stable"]:
+                continue
+            row = {"label": settings.label(), "settings": asdict(settings), "wall_time_s": result["wall_time_s"],
+                   "peer_wall_time_s": result["peer_wall_time_s"], "error": error_against(result, md_ref, t_from),
+                   "error_vs_cablefem_reference": error_against(result, cf_ref, t_from),
+                   "largest_stable_dtM": found == 0, "repeats": result["repeats"]}
+            moordyn_rows.append(row)
+            log(f"  MoorDyn {row['label']:<28} error {row['error']:.2e} ({row['error_vs_cablefem_reference']:.2e} "
+                f"vs cablefem's) {row['wall_time_s']:7.2f} s (peer {row['peer_wall_time_s']:.2f} s)")
+            found += 1
+            if found == keep:
+                break
+    return moordyn_rows, attempts
 
 
 def warm_up():
