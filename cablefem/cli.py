@@ -107,7 +107,9 @@ def cmd_run(args):
 def cmd_sweep(args):
     """``cablefem sweep SWEEP.toml [--scheduler ADDRESS] [--workers N] [--out DIR] [--retry-failed]``."""
     from .sweeps import read_sweep, run
+    from .sweeps.engine import check_cluster_options
 
+    check_cluster_options(args.scheduler, args.workers)
     spec = read_sweep(args.sweep)
     out = args.out or spec.out
     where = args.scheduler or f"a local cluster of {args.workers or os.cpu_count()} worker processes"

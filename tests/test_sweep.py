@@ -246,3 +246,12 @@ def test_identity_follows_the_content_of_the_files_a_case_names(tmp_path):
     assert read_sweep(write(tmp_path, "b.toml", text)).cases[0].case_id == first  # stable
     copy.write_bytes(mesh.read_bytes().replace(b"meshio", b"MESHIO"))  # a different file, the same name
     assert read_sweep(write(tmp_path, "c.toml", text)).cases[0].case_id != first
+
+
+@pytest.mark.parametrize("flags, message", [
+    (["--workers", "0"], "--workers: must be a whole number >= 1, got 0"),
+    (["--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "--workers: applies to the local cluster only"),
+])
+def test_bad_cluster_flags_are_one_line_errors(sweep_file, capsys, flags, message):
+    assert main(["sweep", sweep_file, *flags]) == 2
+    assert capsys.readouterr().err.startswith(f"cablefem: error: {message}")

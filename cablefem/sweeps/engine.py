@@ -80,10 +80,8 @@ def connect(client=None, scheduler=None, workers=None):
         return
     from distributed import Client, LocalCluster
 
+    check_cluster_options(scheduler, workers)
     if scheduler is not None:
-        if workers is not None:
-            raise InputError("applies to the local cluster only: a cluster given by --scheduler has its "
-                             "own workers", key="--workers")
         try:
             made = Client(scheduler, timeout="10s")
         except (OSError, TimeoutError, ValueError) as error:
@@ -92,12 +90,21 @@ def connect(client=None, scheduler=None, workers=None):
         with made:
             yield made
         return
-    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
-        raise InputError(f"must be a whole number >= 1, got {workers!r}", key="--workers")
     # dashboard on any free port: never in the way of another cluster
     with LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
                       dashboard_address=":0") as cluster, Client(cluster) as made:
         yield made
+
+
+def check_cluster_options(scheduler, workers):
+    """Refuse a worker count that is not a whole number >= 1, or one given with a scheduler."""
+    if workers is None:
+        return
+    if scheduler is not None:
+        raise InputError("applies to the local cluster only: a cluster given by --scheduler has its "
+                         "own workers", key="--workers")
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+        raise InputError(f"must be a whole number >= 1, got {workers!r}", key="--workers")
 
 
 def warm_workers(client, tasks):
