@@ -10,5 +10,15 @@ from .line import Line, LineType, Segment
 
 _refresh_jit_cache()  # before any compiled kernel is loaded from numba's cache
 
-__all__ = ["ConvergenceError", "InputError", "Line", "LineType", "Segment"]
+__all__ = ["ConvergenceError", "InputError", "Line", "LineType", "Segment", "sweep"]
 __version__ = "0.1.0"
+
+
+def __getattr__(name):
+    """``cablefem.sweep`` (``cablefem.sweeps.sweep``), imported on first use: dask and pandas stay
+    out of ``import cablefem``."""
+    if name == "sweep":
+        from .sweeps import sweep
+
+        return sweep
+    raise AttributeError(f"module 'cablefem' has no attribute {name!r}")

@@ -111,14 +111,38 @@ def cmd_run(args):
           f"{summary['simulated_time_s']:.3f} s simulated in {summary['wall_time_s']:.2f} s")
 
 
+def cmd_sweep(args):
+    """``cablefem sweep SWEEP.toml [--scheduler ADDRESS] [--workers N] [--out DIR] [--retry-failed]``."""
+    from .sweeps import read_sweep, run
+    from .sweeps.engine import check_cluster_options
+
+    check_cluster_options(args.scheduler, args.workers)
+    spec = read_sweep(args.sweep)
+    out = args.out or spec.out
+    where = args.scheduler or f"a local cluster of {args.workers or os.cpu_count()} worker processes"
+    print(f"sweep {args.sweep}: {len(spec.cases)} cases of {spec.base}; writing to {out}; on {where}")
+    table = run(spec, out=out, scheduler=args.scheduler, workers=args.workers, retry_failed=args.retry_failed)
+    facts = table.attrs["sweep"]
+    for row in table[table["status"] != "ok"].itertuples():
+        print(f"  case {row.case} {row.status}: {row.error}")
+    print(f"{facts['ran']} ran, {facts['skipped']} done before, {facts['failed']} failed, {facts['lost']} lost, "
+          f"{facts['wall_time_s']:.1f} s; wrote {', '.join(facts['tables'])}")
+
+
 def cmd_plot(args):
-    """``cablefem plot OUT [--png FILE]``."""
+    """``cablefem plot OUT [--png FILE] [--y STAT --x KEY --by KEY]``: a run, or a sweep's table."""
     from .io.output import prepare_file
-    from .post import plot_tensions
 
     if args.png:
         prepare_file(args.png)
-    path = plot_tensions(args.out, args.png)
+    if os.path.isfile(os.path.join(args.out, "sweep.parquet")) or args.out.endswith((".parquet", ".csv")):
+        from .sweeps.plot import plot_sweep
+
+        path = plot_sweep(args.out, args.png, y=args.y, x=args.x, by=args.by)
+    else:
+        from .post import plot_tensions
+
+        path = plot_tensions(args.out, args.png)
     print(f"wrote {path}")
 
 
@@ -136,10 +160,25 @@ def build_parser():
     run.add_argument("--duration", type=float, metavar="T", help="simulated time [s]")
     run.add_argument("--dt", type=float, metavar="DT", help="time step [s]")
     run.set_defaults(func=cmd_run)
-    plot = commands.add_parser("plot", help="fairlead and anchor tension against time of a run")
-    plot.add_argument("out", metavar="OUT", help="output folder of a run")
-    plot.add_argument("--png", metavar="FILE", help="image to write (default: OUT/tensions.png)")
+    plot = commands.add_parser("plot", help="tension against time of a run, or a statistic of a sweep")
+    plot.add_argument("out", metavar="OUT", help="output folder of a run or of a sweep (or a sweep's table)")
+    plot.add_argument("--png", metavar="FILE", help="image to write (default: OUT/tensions.png, OUT/sweep.png)")
+    plot.add_argument("--y", metavar="STAT", help="sweep: the column to draw (default: the first line's "
+                      "fairlead_tension_max, or fairlead_tension for static cases)")
+    plot.add_argument("--x", metavar="KEY", help="sweep: the parameter along x (default: the first varied one)")
+    plot.add_argument("--by", metavar="KEY", help="sweep: one curve per value of this parameter "
+                      "(default: the second varied one)")
     plot.set_defaults(func=cmd_plot)
+    sweep = commands.add_parser("sweep", help="many runs of a scene on Dask (docs/sweep.md)")
+    sweep.add_argument("sweep", metavar="SWEEP", help="sweep file (TOML): base scene, axes, run kind")
+    sweep.add_argument("--scheduler", metavar="ADDRESS", help="an existing Dask cluster's scheduler, "
+                       "e.g. tcp://host:8786 (default: a local cluster)")
+    sweep.add_argument("--workers", type=int, metavar="N", help="local cluster: worker processes "
+                       "(default: one per core)")
+    sweep.add_argument("--out", metavar="DIR", help="output folder (default: the sweep file's out)")
+    sweep.add_argument("--retry-failed", action="store_true", help="run again the cases that failed "
+                       "(cases done before are skipped)")
+    sweep.set_defaults(func=cmd_sweep)
     return parser
 
 

@@ -27,3 +27,14 @@ def make_line(line_type, order=1, elements=20, anchor=(-600.0, 0.0, -100.0), fai
               length=635.0):
     """A one-segment line of ``line_type``."""
     return Line("line1", anchor, fairlead, [Segment(line_type, length, elements)], order)
+
+
+@pytest.fixture(scope="session")
+def dask_client():
+    """One Dask LocalCluster for the tests that run sweeps: two worker processes of one thread,
+    as ``cablefem sweep`` starts on this 2-core machine (closed after the session)."""
+    from distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster, \
+            Client(cluster) as client:
+        yield client

@@ -11,8 +11,8 @@ from verification.work_precision import run as study
 
 
 @pytest.fixture(scope="module")
-def fast():
-    results, _ = study.run(fast=True, log=lambda *args: None)
+def fast(dask_client):
+    results, _ = study.run(fast=True, log=lambda *args: None, client=dask_client)
     return results
 
 

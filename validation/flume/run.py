@@ -1,22 +1,28 @@
 """The six desire2023 flume cases (Sec. 4, Figs. 12-17): three seabeds x two fairlead motions.
 
-Run ``python -m validation.flume.run [--fast] [--out DIR] [--runs DIR] [--convergence | --sensitivity]``;
+Run ``python -m validation.flume.run [--fast] [--out DIR] [--runs DIR] [--convergence | --sensitivity]
+[--workers N | --scheduler ADDRESS]``;
 ``run(fast=True)`` returns the numbers tests/test_validation_flume.py asserts on.
 
-Each case is ``cablefem.scenes.flume_scene`` (prototype scale, reconstructed steps,
-docs/seabeds.md) run by ``cablefem.run.run_scene`` for the ramp (one period) plus
-several periods; the statistics are taken over the last two periods: mean, max and
-min fairlead tension, the quasi-static "lowest tension peak" (the minimum of the
-periodic tension, Figs. 12, 14, 16), the dynamic peak and range (Figs. 13, 15, 17)
-and the touchdown position range. Three findings of the paper are checked:
+The cases are the sweep files of this folder (``sweep.toml``, ``sweep_fast.toml``; docs/sweep.md):
+the Table 5 line of ``flume.toml`` (the physics of ``cablefem.scenes.flume_scene``: prototype
+scale, reconstructed steps, docs/seabeds.md) with each case's seabed, motion, elements and step,
+run in parallel on Dask by ``cablefem.sweeps`` (``cablefem.run.run_scene`` in each worker) for the
+ramp (one period) plus several periods, each into its own folder; the statistics are taken
+over the last two periods: mean, max and min fairlead tension, the quasi-static "lowest tension
+peak" (the minimum of the periodic tension, Figs. 12, 14, 16), the dynamic peak and range
+(Figs. 13, 15, 17) and the touchdown position range. Three findings of the paper are checked:
 
 1. quasi-static lowest peaks flat > gentle > steep (paper: ~2.5, 2.2, 2.0 MN);
 2. dynamic tensions highest on the flat seabed, lower on gentle, lowest on steep;
 3. the seabed matters more in the dynamic cases: the relative spread across
    seabeds of the dynamic peak exceeds that of the quasi-static tensions.
 
-``--convergence`` runs instead the time-step and element study that chose the settings;
-``--sensitivity`` the runs without friction and with a 4x slower quasi-static motion.
+``--convergence`` runs instead the time-step and element study that chose the settings
+(convergence.toml); ``--sensitivity`` the runs without friction and with a 4x slower
+quasi-static motion (sensitivity.toml). ``--workers N`` sets the local cluster's size,
+``--scheduler ADDRESS`` uses an existing Dask cluster; with ``--runs DIR`` a study stopped
+half-way resumes where it stopped.
 """
 
 import argparse
@@ -30,7 +36,7 @@ from pathlib import Path
 import numpy as np
 
 from cablefem.post import read_tensions
-from cablefem.scenes import FLUME_MOTIONS, FLUME_SEABEDS, flume_scene
+from cablefem.scenes import FLUME_MOTIONS, FLUME_SEABEDS
 
 HERE = Path(__file__).resolve().parent
 MOTIONS = tuple(FLUME_MOTIONS)  # ("quasi-static", "dynamic")
@@ -39,18 +45,11 @@ MN = 1e6
 #: desire2023 Sec. 4.2: quasi-static lowest tension peaks read off Figs. 12, 14, 16 [N]
 PAPER_LOWEST_PEAK = {"flat": 2.5e6, "gentle": 2.2e6, "steep": 2.0e6}
 
-#: per motion: P1 elements, time step [s] and periods simulated after the one-period ramp;
-#: "full" from the convergence study (README), "fast" the cheapest that keeps the findings
-SETTINGS = {
-    "full": {"quasi-static": {"elements": 80, "dt": 0.01, "periods": 4},
-             "dynamic": {"elements": 160, "dt": 0.005, "periods": 6}},
-    "fast": {"quasi-static": {"elements": 20, "dt": 0.05, "periods": 3},
-             "dynamic": {"elements": 40, "dt": 0.01, "periods": 2}},
-}
-
-#: the convergence study: (elements, dt [s]) pairs, each case run for ramp + 3 periods
-CONVERGENCE = [(40, 0.01), (40, 0.005), (80, 0.01), (80, 0.005), (160, 0.005)]
-CONVERGENCE_PERIODS = 3
+#: the sweep files (cablefem.sweeps, docs/sweep.md) holding the cases: the six cases at the settings
+#: of the convergence study ("full", README) or the cheapest that keep the findings ("fast"), the
+#: convergence study itself and the sensitivity runs
+SWEEPS = {"full": HERE / "sweep.toml", "fast": HERE / "sweep_fast.toml",
+          "convergence": HERE / "convergence.toml", "sensitivity": HERE / "sensitivity.toml"}
 
 
 def provenance():
@@ -83,12 +82,6 @@ def _stamp(started):
     if changed:
         print("warning: cablefem/ changed during this run; modules were imported at its start")
     return {"start": started, "end": ended, "cablefem_changed_during_run": changed}
-
-
-def duration(motion, periods):
-    """Run length [s] of ``motion``: its ramp plus ``periods`` periods."""
-    m = FLUME_MOTIONS[motion]
-    return m.ramp + periods * m.period
 
 
 def touchdown_x(points, gap):
@@ -127,71 +120,88 @@ def _motion_state(m, t):
             m.amplitude[0] * omega * np.cos(omega * t))
 
 
-def static_tension(seabed, elements, surge):
-    """Static fairlead tension [N] of the flume line with its fairlead moved by ``surge`` [m]
+def static_tension(scene, surge):
+    """Static fairlead tension [N] of the scene's line with its fairlead moved by ``surge`` [m]
     along x (no friction, drag or inertia): the quasi-static limit of a case."""
     from cablefem.line import Line
     from cablefem.results import report as line_report
     from cablefem.run import build_system
     from cablefem.statics import solve_static
 
-    scene = flume_scene(seabed, "quasi-static", elements=elements)
     line = scene.lines[0]
     moved = Line(line.name, line.anchor, line.fairlead + np.array([surge, 0.0, 0.0]), line.segments, line.order)
     system = build_system(scene, moved, dynamic=False)
     return line_report(system, solve_static(system).X).fairlead_tension
 
 
-def stats_head(seabed, motion, elements, dt, length, period, scene, summary, error, out_dir):
-    """What a case is and how its run went (dict), before any statistics."""
-    return {
-        "seabed": seabed, "motion": motion, "elements": elements, "dt": dt, "duration_s": length,
-        "friction": scene.friction.model,
+def run_sweep(name, runs_dir, frames=True, select=None, client=None):
+    """Run the cases of ``SWEEPS[name]`` (those whose (seabed, motion) tags ``select`` holds, or all)
+    on Dask into ``runs_dir`` (``cablefem.sweeps``: a LocalCluster unless ``client`` is given;
+    cases done there before are read back, not run again), and return each case's statistics."""
+    from cablefem.sweeps import read_sweep
+    from cablefem.sweeps import run as run_cases
+
+    spec = read_sweep(SWEEPS[name])
+    if select is not None:
+        spec = dataclasses.replace(spec, cases=[c for c in spec.cases
+                                                if (c.tags["tag.seabed"], c.tags["tag.motion"]) in select])
+    table = run_cases(spec, out=str(runs_dir), client=client, progress=False)
+    rows = {row["case"]: row for row in table.to_dict("records")}
+    return [case_statistics(spec, case, rows[case.index], Path(runs_dir), frames) for case in spec.cases]
+
+
+def case_statistics(spec, case, row, runs_dir, frames=True):
+    """Statistics of one case of a flume sweep over its last two periods (dict, SI units), from its
+    folder (tensions.csv, summary.json and, with ``frames``, the VTK frames); the series themselves
+    under the private key "_series"."""
+    from cablefem.io.toml_scene import read_toml_scene
+
+    scene = read_toml_scene(spec.base, case.data)
+    moving, length = scene.motion, scene.solver.duration
+    period = moving.period
+    out_dir = runs_dir / row["dir"]
+    error = None if row["status"] == "ok" else row["error"]
+    written = out_dir / "summary.json"  # run_scene writes one unless it failed before stepping
+    summary = json.loads(written.read_text()) if written.is_file() else {
+        "status": f"stopped before the first step: {error}", "wall_time_s": float("nan"), "steps": 0,
+        "integrator": [], "newton_iterations": 0}
+    stats = {
+        "seabed": case.tags["tag.seabed"], "motion": case.tags["tag.motion"],
+        "elements": scene.lines[0].segments[0].elements, "dt": scene.solver.dt, "duration_s": length,
+        "periods": int(round((length - moving.ramp) / period)), "friction": scene.friction.model,
         "window_s": [float(length - 2 * period), float(length)], "period_s": period,
         "status": summary["status"], "error": error,
         "wall_time_s": summary["wall_time_s"], "steps": summary["steps"],
         "rejected_steps": sum(s["rejected"] for s in summary["integrator"]),
         "newton_iterations": summary["newton_iterations"], "run_dir": str(out_dir),
     }
-
-
-def run_case(seabed, motion, elements, dt, periods, runs_dir, frames=True, friction=None, period=None):
-    """Run one case and return its statistics over the last two periods (dict, SI units);
-    the series themselves under the private key "_series". ``friction`` (a ``Friction``)
-    and ``period`` [s] (ramp = period) replace the scene's, for sensitivity runs."""
-    moving = FLUME_MOTIONS[motion]
-    if period is not None:
-        moving = dataclasses.replace(moving, period=float(period), ramp=float(period))
-    period = moving.period
-    length = moving.ramp + periods * period
-    scene = flume_scene(seabed, motion, elements=elements, duration=length, dt=dt)
-    scene = dataclasses.replace(scene, motion=moving, friction=friction or scene.friction)
-    tag = f"-friction-{scene.friction.model}" if friction is not None else ""
-    tag += f"-T{period:g}" if period != FLUME_MOTIONS[motion].period else ""
-    out_dir = Path(runs_dir) / f"{seabed}-{motion}-{elements}el-dt{dt:g}{tag}"
-    try:
-        summary = run_scene_quiet(scene, out_dir, length, dt)
-        error = None
-    except Exception as failure:  # the solver's failure is a result here, reported in the table
-        error = f"{type(failure).__name__}: {failure}".splitlines()[0][:300]
-        written = out_dir / "summary.json"  # run_scene writes one unless it failed before stepping
-        summary = json.loads(written.read_text()) if written.is_file() else {
-            "status": f"stopped before the first step: {error}", "wall_time_s": float("nan"), "steps": 0,
-            "integrator": [], "newton_iterations": 0}
+    if "tag.variant" in case.tags:
+        stats["variant"] = case.tags["tag.variant"]
     if not (out_dir / "tensions.csv").is_file():
-        return {**stats_head(seabed, motion, elements, dt, length, period, scene, summary, error, out_dir),
-                "completed": False}
+        return {**stats, "completed": False}
     data = read_tensions(out_dir)
     t, tension, anchor = data["t"], data["fairlead_tension"], data["anchor_tension"]
-    window = t >= length - 2 * period - 1e-9
-    stats = stats_head(seabed, motion, elements, dt, length, period, scene, summary, error, out_dir)
     if error is not None or not np.all(np.isfinite(tension)) or t[-1] < length - 1e-6:
-        stats["completed"] = False
-        return stats
+        return {**stats, "completed": False}
+    stats.update(window_statistics(scene, t, tension, anchor))
+    series = {"t": t, "fairlead_tension": tension, "anchor_tension": anchor}
+    if frames:
+        stats.update(touchdown_statistics(out_dir, stats, series))
+    stats["_series"] = series
+    return stats
+
+
+def window_statistics(scene, t, tension, anchor):
+    """Fairlead tension over the last two periods of a run (t (n,) [s], tension and anchor tension
+    (n,) [N]): mean, extremes and their times and surges, the static tensions at the extreme
+    surges, and the extremes of each of the two periods."""
+    moving, length = scene.motion, scene.solver.duration
+    period = moving.period
+    window = t >= length - 2 * period - 1e-9
     w_t, w_T = t[window], tension[window]
     i_max, i_min = int(np.argmax(w_T)), int(np.argmin(w_T))
     surge, velocity = _motion_state(moving, w_t)
-    stats.update({
+    return {
         "completed": True,
         "mean_N": float(w_T.mean()), "max_N": float(w_T[i_max]), "min_N": float(w_T[i_min]),
         "range_N": float(w_T[i_max] - w_T[i_min]),
@@ -201,32 +211,25 @@ def run_case(seabed, motion, elements, dt, periods, runs_dir, frames=True, frict
         "surge_at_min_m": float(surge[i_min]),
         "anchor_max_N": float(anchor[window].max()), "anchor_min_N": float(anchor[window].min()),
         # the quasi-static limit: static equilibrium at the extreme surges
-        "static_at_min_surge_N": static_tension(seabed, elements, moving.offset[0] - moving.amplitude[0]),
-        "static_at_max_surge_N": static_tension(seabed, elements, moving.offset[0] + moving.amplitude[0]),
+        "static_at_min_surge_N": static_tension(scene, moving.offset[0] - moving.amplitude[0]),
+        "static_at_max_surge_N": static_tension(scene, moving.offset[0] + moving.amplitude[0]),
         # repeatability: the two periods of the window, max and min each
         "period_max_N": [float(w_T[w_t < length - period].max()), float(w_T[w_t >= length - period].max())],
         "period_min_N": [float(w_T[w_t < length - period].min()), float(w_T[w_t >= length - period].min())],
-    })
-    series = {"t": t, "fairlead_tension": tension, "anchor_tension": anchor}
-    if frames:
-        first, f_t, points, gaps = read_frames(out_dir, length - 2 * period)
-        x_td = np.array([touchdown_x(p, g) for p, g in zip(points, gaps)])
-        stats.update({"touchdown_x_min_m": float(np.nanmin(x_td)), "touchdown_x_max_m": float(np.nanmax(x_td)),
-                      "touchdown_x_at_max_tension_m": float(x_td[np.argmin(np.abs(f_t - w_t[i_max]))]),
-                      "touchdown_x_at_min_tension_m": float(x_td[np.argmin(np.abs(f_t - w_t[i_min]))]),
-                      "element_length_m": 635.0 / elements})
-        k_max, k_min = int(np.argmin(np.abs(f_t - w_t[i_max]))), int(np.argmin(np.abs(f_t - w_t[i_min])))
-        series.update({"frame_t": f_t, "touchdown_x": x_td, "line_at_max": points[k_max],
-                       "line_at_min": points[k_min], "frame_index_min": first + k_min})
-    stats["_series"] = series
-    return stats
+    }
 
 
-def run_scene_quiet(scene, out_dir, length, dt):
-    """``run_scene`` without a progress bar; returns its summary."""
-    from cablefem.run import run_scene
-
-    return run_scene(scene, str(out_dir), duration=length, dt=dt, progress=False)
+def touchdown_statistics(out_dir, stats, series):
+    """Touchdown range over the window from the run's frames, and the line at the extremes (added to
+    ``series``)."""
+    first, f_t, points, gaps = read_frames(out_dir, stats["window_s"][0])
+    x_td = np.array([touchdown_x(p, g) for p, g in zip(points, gaps)])
+    k_max, k_min = int(np.argmin(np.abs(f_t - stats["t_max_s"]))), int(np.argmin(np.abs(f_t - stats["t_min_s"])))
+    series.update({"frame_t": f_t, "touchdown_x": x_td, "line_at_max": points[k_max],
+                   "line_at_min": points[k_min], "frame_index_min": first + k_min})
+    return {"touchdown_x_min_m": float(np.nanmin(x_td)), "touchdown_x_max_m": float(np.nanmax(x_td)),
+            "touchdown_x_at_max_tension_m": float(x_td[k_max]), "touchdown_x_at_min_tension_m": float(x_td[k_min]),
+            "element_length_m": 635.0 / stats["elements"]}
 
 
 def _spread(values):
@@ -274,73 +277,44 @@ def findings(cases):
     }
 
 
-def run(fast=False, runs_dir=None, frames=True, cases=None):
-    """Run the six cases (or ``cases``, a list of (seabed, motion)) with the fast or full
-    settings; a dict of plain numbers, with the series under "_series" keys."""
-    settings = SETTINGS["fast" if fast else "full"]
-    cases = cases or [(s, m) for s in FLUME_SEABEDS for m in MOTIONS]
+def run(fast=False, runs_dir=None, frames=True, cases=None, client=None):
+    """Run the six cases (or ``cases``, a list of (seabed, motion)) of the fast or full sweep file in
+    parallel (``run_sweep``); a dict of plain numbers, with the series under "_series" keys."""
     keep = runs_dir is not None
     runs_dir = Path(runs_dir) if keep else Path(tempfile.mkdtemp(prefix="cablefem-flume-"))
     started = provenance()
     start = time.perf_counter()
-    results = []
-    try:
-        for seabed, motion in cases:
-            chosen = settings[motion]
-            results.append(run_case(seabed, motion, chosen["elements"], chosen["dt"], chosen["periods"],
-                                    runs_dir, frames=frames))
-    finally:
-        wall = time.perf_counter() - start
+    results = run_sweep("fast" if fast else "full", runs_dir, frames=frames,
+                        select=None if cases is None else set(cases), client=client)
+    wall = time.perf_counter() - start
+    settings = {c["motion"]: {"elements": c["elements"], "dt": c["dt"], "periods": c["periods"]} for c in results}
     return {"fast": fast, "settings": settings, "cases": results, "findings": findings(results),
             "wall_time_s": wall, "runs_dir": str(runs_dir), "runs_kept": keep,
             "provenance": _stamp(started)}
 
 
-def convergence(runs_dir):
-    """Peak, lowest and mean fairlead tension of every case for each (elements, dt) of
-    CONVERGENCE, over the last two of ramp + CONVERGENCE_PERIODS periods."""
-    rows = []
-    for seabed in FLUME_SEABEDS:
-        for motion in MOTIONS:
-            for elements, dt in CONVERGENCE:
-                c = run_case(seabed, motion, elements, dt, CONVERGENCE_PERIODS, runs_dir, frames=False)
-                c.pop("_series", None)
-                rows.append(c)
-                print(f"  {seabed:6s} {motion:12s} {elements:4d} el dt {dt:<6g} "
-                      + (f"max {c['max_N'] / MN:.4f} min {c['min_N'] / MN:.4f} mean {c['mean_N'] / MN:.4f} MN"
-                         if c.get("completed") else f"FAILED {c['error']}")
-                      + f"  {c['wall_time_s']:.0f} s, {c['rejected_steps']} rejected", flush=True)
-    return rows
+def convergence(runs_dir, client=None):
+    """Peak, lowest and mean fairlead tension of every case at each (elements, dt) of
+    convergence.toml, over the last two of ramp + 3 periods."""
+    return _study("convergence", runs_dir, client,
+                  lambda c: f"{c['elements']:4d} el dt {c['dt']:<6g}", lambda c: f", {c['rejected_steps']} rejected")
 
 
-#: the sensitivity study: (label, motion, elements, dt [s], periods after the ramp, changes)
-SENSITIVITY = [
-    ("as in the paper", "quasi-static", 80, 0.01, 3, {}),
-    ("no friction", "quasi-static", 80, 0.01, 3, {"friction": "none"}),
-    ("4x slower, T = 68 s", "quasi-static", 80, 0.04, 2, {"period": 68.0}),
-    ("as in the paper", "dynamic", 80, 0.005, 3, {}),
-    ("no friction", "dynamic", 80, 0.005, 3, {"friction": "none"}),
-]
-
-
-def sensitivity(runs_dir):
-    """What friction and the finite period do to the tensions: each row of SENSITIVITY for
+def sensitivity(runs_dir, client=None):
+    """What friction and the finite period do to the tensions: each variant of sensitivity.toml for
     each seabed, with the static tensions at the extreme surges."""
-    from cablefem.scene import Friction
+    return _study("sensitivity", runs_dir, client, lambda c: f"{c['variant']:22s}", lambda c: "")
 
-    rows = []
-    for seabed in FLUME_SEABEDS:
-        for label, motion, elements, dt, periods, change in SENSITIVITY:
-            friction = Friction(model=change["friction"]) if "friction" in change else None
-            c = run_case(seabed, motion, elements, dt, periods, runs_dir, frames=False,
-                         friction=friction, period=change.get("period"))
-            c.pop("_series", None)
-            c["variant"] = label
-            rows.append(c)
-            print(f"  {seabed:6s} {motion:12s} {label:22s} "
-                  + (f"max {c['max_N'] / MN:.4f} min {c['min_N'] / MN:.4f} mean {c['mean_N'] / MN:.4f} MN"
-                     if c.get("completed") else f"FAILED {c['error']}")
-                  + f"  {c['wall_time_s']:.0f} s", flush=True)
+
+def _study(name, runs_dir, client, setting, extra):
+    """The rows of ``SWEEPS[name]`` without their series, each printed on a line."""
+    rows = run_sweep(name, runs_dir, frames=False, client=client)
+    for c in rows:
+        c.pop("_series", None)
+        print(f"  {c['seabed']:6s} {c['motion']:12s} {setting(c)} "
+              + (f"max {c['max_N'] / MN:.4f} min {c['min_N'] / MN:.4f} mean {c['mean_N'] / MN:.4f} MN"
+                 if c.get("completed") else f"FAILED {c['error']}")
+              + f"  {c['wall_time_s']:.0f} s{extra(c)}", flush=True)
     return rows
 
 
@@ -409,8 +383,9 @@ def report(results):
 def report_convergence(rows):
     """The convergence table, as text: per case and setting, max/min/mean [MN] and the change
     relative to the finest setting."""
+    last = rows[-1]
     lines = ["convergence: fairlead tension over the last two of ramp + "
-             f"{CONVERGENCE_PERIODS} periods; change relative to {CONVERGENCE[-1][0]} el, dt {CONVERGENCE[-1][1]} s",
+             f"{last['periods']} periods; change relative to {last['elements']} el, dt {last['dt']:g} s",
              f"{'seabed':7s} {'motion':12s} {'el':>4s} {'dt':>6s} {'max':>7s} {'dmax':>7s} {'min':>7s} "
              f"{'dmin':>7s} {'mean':>7s} {'dmean':>7s} {'wall':>6s} {'rej':>4s}"]
     for seabed in FLUME_SEABEDS:
@@ -634,8 +609,19 @@ def main(argv=None):
                         help="run only the element/time-step study (~25 min): a table and convergence.json")
     parser.add_argument("--sensitivity", action="store_true",
                         help="run only the friction and period study (~10 min): a table and sensitivity.json")
+    parser.add_argument("--workers", type=int, metavar="N", help="local Dask cluster: worker processes "
+                        "(default: one per core)")
+    parser.add_argument("--scheduler", metavar="ADDRESS", help="an existing Dask cluster instead")
     args = parser.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
+    from cablefem.sweeps.engine import connect
+
+    with connect(scheduler=args.scheduler, workers=args.workers) as client:
+        studies(args, client)
+
+
+def studies(args, client):
+    """The studies ``main``'s arguments ask for, on the Dask ``client``."""
     for wanted, study, table, name in ((args.convergence, convergence, report_convergence, "convergence"),
                                        (args.sensitivity, sensitivity, report_sensitivity, "sensitivity")):
         if not wanted:
@@ -643,7 +629,7 @@ def main(argv=None):
         runs = args.runs or Path(tempfile.mkdtemp(prefix=f"cablefem-flume-{name}-"))
         started, start = provenance(), time.perf_counter()
         try:
-            rows = study(runs)
+            rows = study(runs, client=client)
         finally:
             if args.runs is None:
                 shutil.rmtree(runs, ignore_errors=True)
@@ -653,7 +639,7 @@ def main(argv=None):
             {"provenance": _stamp(started), "wall_time_s": time.perf_counter() - start, "rows": rows}, indent=1))
     if args.convergence or args.sensitivity:
         return
-    results = run(fast=args.fast, runs_dir=args.runs)
+    results = run(fast=args.fast, runs_dir=args.runs, client=client)
     try:
         print(report(results))
         (args.out / "results.json").write_text(json.dumps(plain(results), indent=1))

@@ -21,7 +21,12 @@ skipped (TmaxIC = 0, in MoorDyn's favour: ``ic_check`` measures what that change
 0.01 s coupling step downwards from twice the axial-wave CFL limit. Cheap runs of both codes are
 repeated and their least wall time kept (``REPEATS``).
 
-Run ``python -m verification.work_precision.run [--fast] [--out DIR] [--replot]``;
+cablefem's runs are the cases of a sweep file (``sweep.toml``, ``sweep_fast.toml``; ``runs.py``)
+run on Dask by ``cablefem.sweeps``: the untimed ones (references, checks, time order) in parallel,
+the timed rows one at a time (``alone``); MoorDyn's runs follow in this process, alone too.
+
+Run ``python -m verification.work_precision.run [--fast] [--out DIR] [--replot] [--runs DIR]
+[--workers N | --scheduler ADDRESS]``;
 ``run(fast=True)`` (the snap sweep on coarse settings over 18 s and the slow-surge time order over
 20 s, ~35 s) returns what tests/test_work_precision.py asserts.
 """
@@ -34,6 +39,8 @@ import json
 import pstats
 import sys
 import time
+import shutil
+import tempfile
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
@@ -42,12 +49,11 @@ import numpy as np
 if __package__ in (None, ""):  # python verification/work_precision/run.py
     sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from cablefem.dynamics import INTEGRATORS  # noqa: E402
-from cablefem.errors import ConvergenceError  # noqa: E402
-from cablefem.run import StepControl, boundary_path, build_system, start_states  # noqa: E402
 from cablefem.scenes import FLUME_MOTIONS, flume_scene, table5_chain  # noqa: E402
 from validation.moordyn.run import (COUPLING_DT, FLUME_FILE_SEGMENTS, FLUME_LENGTH,  # noqa: E402
                                     differences, run_moordyn_case)
+from verification.work_precision.runs import (REPEATS, CablefemSettings, cablefem_runs,  # noqa: E402,F401
+                                              least_time, run_cablefem_scene)
 
 HERE = Path(__file__).resolve().parent
 MOORDYN_FILE = HERE.parents[1] / "validation" / "moordyn" / "inputs" / "flume_flat.dat"
@@ -59,32 +65,6 @@ WINDOW_PERIODS = 2
 LOOSE_NEWTON = 1e-4
 #: MoorDyn time steps tried: divisors of the coupling step, so that every substep has the same dtM
 DTM_DIVISORS = (1, 2, 4, 5, 8, 10, 16, 20, 25, 32, 40, 50, 64, 80, 100, 125, 160, 200)
-
-
-@dataclass(frozen=True)
-class CablefemSettings:
-    """One cablefem run: element order and count, step dt [s] (the largest step when adaptive),
-    integrator, adaptive BDF2 with its local tension error tolerance, generalised-alpha's rho_inf,
-    Newton's relative tolerance ([solver] tolerance; the scenes' default is 1e-8) and Newton's
-    kind ([solver] newton: "full", or "modified", the LU factors kept across iterations and steps
-    while they contract; the scenes' "auto" switches between the two, not swept here)."""
-
-    order: int
-    elements: int
-    dt: float
-    integrator: str = "bdf2"
-    adaptive: bool = False
-    error_tolerance: float = 3e-4
-    rho_inf: float = 0.8
-    tolerance: float = 1e-8
-    newton: str = "full"
-
-    def label(self):
-        kind = {"bdf2": "BDF2", "generalized-alpha": f"gen-a {self.rho_inf:g}"}[self.integrator]
-        step = f"adaptive {self.error_tolerance:g} (dt <= {self.dt:g})" if self.adaptive else f"dt {self.dt:g}"
-        newton = "" if self.tolerance == 1e-8 else f", Newton tol {self.tolerance:g}"
-        modified = ", modified Newton" if self.newton == "modified" else ""
-        return f"P{self.order} x {self.elements}, {kind}, {step}{newton}{modified}"
 
 
 @dataclass(frozen=True)
@@ -100,104 +80,28 @@ class MoordynSettings:
 
 # ----------------------------------------------------------------------------- the plan
 def plan(fast):
-    """Per motion: duration [s], the references and the sweeps of both codes."""
-    P = CablefemSettings
+    """Per motion, MoorDyn's part of the study: its reference, the initial-condition check, the
+    segment counts with how many stable steps to keep each, and the repeats of its timed runs
+    (cablefem's runs are in the sweep files, ``runs.py``)."""
     if fast:
-        return {"snap": {
-            "duration": 18.0,
-            "cablefem_reference": P(3, 40, 0.0025),
-            "cablefem_reference_checks": [P(3, 20, 0.0025), P(3, 40, 0.005)],
-            "moordyn_reference": MoordynSettings(160, 1e-3),
-            "moordyn_segments": {20: 2, 40: 2, 80: 1},
-            "cablefem": [P(1, n, dt) for n in (10, 20, 40) for dt in (0.02, 0.01)]
-                        + [P(2, n, dt) for n in (10, 20) for dt in (0.02, 0.01, 0.005)]
-                        + [P(2, 10, dt, "generalized-alpha") for dt in (0.02, 0.01)]
-                        + [P(2, 20, 0.05, adaptive=True, error_tolerance=tol) for tol in (1e-3, 3e-4)],
-            # time error alone: one mesh, steps halving, against the same mesh at dt / 4 of the finest
-            "time_order": {"mesh": (2, 20), "dts": (0.02, 0.01, 0.005), "reference_dt": 0.00125},
-            "repeats": (),  # the tests assert no timings
-        }, "slow-surge": {
-            "duration": 20.0,  # the window (two periods, 34 s) is then the whole run, ramp included
-            "time_order": {"mesh": (2, 20), "dts": (0.04, 0.02, 0.01), "reference_dt": 0.0025},
-        }}
-    meshes = ([(1, n) for n in (20, 40, 80, 160, 320)] + [(2, n) for n in (10, 20, 40, 80, 160)]
-              + [(3, n) for n in (10, 20, 40, 80)])
-    # the element counts between those (x sqrt 2) and below them (/ sqrt 2, / 2: MoorDyn's
-    # 20-segment runs reach errors of 10-20 % in snap), with the loose Newton tolerance only
-    between = ([(1, n) for n in (10, 14, 28, 57, 113, 226)] + [(2, n) for n in (5, 7, 14, 28, 57, 113)]
-               + [(3, n) for n in (5, 7, 14, 28, 57)])
-
-    def sweep(dts, loose_dts):
-        """BDF2 on every mesh at every dt of ``dts``; Newton tolerance LOOSE_NEWTON at ``loose_dts``
-        on these meshes and those between them, with full and with modified Newton;
-        generalised-alpha and adaptive BDF2 on two P2 meshes (smaller steps than 0.01 s are
-        dominated here: the time_order entry covers the time error)."""
-        return ([P(k, n, dt) for k, n in meshes for dt in dts]
-                + [P(k, n, dt, tolerance=LOOSE_NEWTON, newton=newton) for newton in ("full", "modified")
-                   for k, n in meshes + between for dt in loose_dts]
-                + [P(2, n, dt, "generalized-alpha") for n in (40, 80) for dt in (0.02, 0.01)]
-                + [P(2, n, 0.05, adaptive=True, error_tolerance=tol) for n in (40, 80) for tol in (1e-3, 1e-4)])
-
-    md_segments = {20: 3, 40: 3, 80: 3, 160: 2, 320: 2}
-    return {
-        "slow-surge": {
-            "duration": 51.0,
-            "cablefem_reference": P(3, 160, 0.0025),
-            "cablefem_reference_checks": [P(3, 80, 0.0025), P(3, 160, 0.005)],
-            "moordyn_reference": MoordynSettings(640, 1e-4),
-            "ic_check": MoordynSettings(80, 0.0025),
-            "moordyn_segments": md_segments,
-            "cablefem": sweep((0.04, 0.02, 0.01), (0.17, 0.085, 0.04, 0.02)),
-            "time_order": {"mesh": (2, 40), "dts": (0.04, 0.02, 0.01), "reference_dt": 0.0025},
-        },
-        "snap": {
-            "duration": 36.0,
-            "cablefem_reference": P(3, 320, 0.0025),
-            "cablefem_reference_checks": [P(3, 160, 0.0025), P(3, 320, 0.005)],
-            "moordyn_reference": MoordynSettings(640, 1e-4),
-            "ic_check": MoordynSettings(80, 0.0025),
-            "moordyn_segments": md_segments,
-            "cablefem": sweep((0.02, 0.01), (0.16, 0.08, 0.04, 0.02)),
-            "time_order": {"mesh": (2, 40), "dts": (0.02, 0.01, 0.005), "reference_dt": 0.00125},
-        },
-    }
+        return {"snap": {"moordyn_reference": MoordynSettings(160, 1e-3), "moordyn_segments": {20: 2, 40: 2, 80: 1},
+                         "repeats": ()},  # the tests assert no timings
+                "slow-surge": {}}
+    full = {"moordyn_reference": MoordynSettings(640, 1e-4), "ic_check": MoordynSettings(80, 0.0025),
+            "moordyn_segments": {20: 3, 40: 3, 80: 3, 160: 2, 320: 2}}
+    return {"slow-surge": dict(full), "snap": dict(full)}
 
 
 # ----------------------------------------------------------------------------- runners
 def run_cablefem(motion, duration, settings):
-    """cablefem on the flat flume scene with ``settings``: dict of t (n,) [s], tension (n,) [N]
-    at the fairlead after every step, wall_time_s (statics + set-up + steps) and the counters;
-    a run whose Newton fails even at the smallest step has ``failed`` (the message) instead."""
+    """cablefem on the flat flume scene with ``settings`` (``runs.run_cablefem_scene``: t, tension,
+    wall time and counters, or ``failed``); for the warm-up and the profile, in this process."""
     s = settings
     scene = flume_scene("flat", MOTIONS[motion], s.elements, s.order, duration, s.dt)
     scene.solver = replace(scene.solver, integrator=s.integrator, adaptive=s.adaptive,
                            error_tolerance=s.error_tolerance, rho_inf=s.rho_inf, tolerance=s.tolerance,
                            newton=s.newton)
-    line = scene.lines[0]
-    start = time.perf_counter()
-    system = build_system(scene, line)
-    (X0,), _ = start_states(scene, systems=[system])
-    options = {"rho_inf": s.rho_inf} if s.integrator == "generalized-alpha" else {}
-    integ = INTEGRATORS[s.integrator](system, X0, boundary_path(scene, line), dt=s.dt,
-                                      tolerance=scene.solver.tolerance, newton=scene.solver.newton, **options)
-    control = StepControl(scene.solver, s.dt)
-    times, tensions = [integ.t], [np.linalg.norm(integ.reactions()[0])]
-    try:
-        if s.adaptive:
-            while integ.t < duration - 1e-9 * s.dt:
-                control.advance([integ], duration - integ.t)
-                times.append(integ.t)
-                tensions.append(np.linalg.norm(integ.reactions()[0]))
-        else:
-            steps = control.times(integ.t, duration)
-            times.extend(steps)
-            tensions.extend(np.linalg.norm(integ.march(steps)[:, 0], axis=1))
-    except ConvergenceError as error:
-        return {"failed": str(error), "wall_time_s": time.perf_counter() - start}
-    wall = time.perf_counter() - start
-    stats = integ.statistics()
-    return {"t": np.array(times), "tension": np.array(tensions), "wall_time_s": wall,
-            **{key: stats[key] for key in ("steps", "rejected", "newton_iterations", "nfev", "nlu")}}
+    return run_cablefem_scene(scene)
 
 
 @contextlib.contextmanager
@@ -255,25 +159,6 @@ def moordyn_candidates(segments):
     return [COUPLING_DT / k for k in DTM_DIVISORS if COUPLING_DT / k <= 2.0 * crossing]
 
 
-#: cheap runs are repeated and the least wall time kept (the results are deterministic; only the
-#: shared machine's load varies): (wall time below [s], runs)
-REPEATS = ((0.2, 5), (1.0, 3), (3.0, 2))
-
-
-def least_time(run, repeats=REPEATS):
-    """``run()`` (a dict with wall_time_s), repeated per ``repeats``; wall_time_s (and
-    peer_wall_time_s) become the least over the repeats, ``repeats`` says how many."""
-    result = run()
-    count = next((n for limit, n in repeats if result["wall_time_s"] < limit), 1)
-    for _ in range(count - 1):
-        again = run()
-        for key in ("wall_time_s", "peer_wall_time_s"):
-            if key in result:
-                result[key] = min(result[key], again[key])
-    result["repeats"] = count
-    return result
-
-
 # ----------------------------------------------------------------------------- errors
 def window_start(motion, duration):
     """Start [s] of the error window: the last two periods."""
@@ -320,51 +205,48 @@ def observed_order(steps, errors):
 
 
 # ----------------------------------------------------------------------------- the study
-def study_motion(motion, spec, log=print):
-    """References, their convergence, the sweeps and the ratio table of one motion (when its spec
-    has them), and the observed order of the time error alone."""
-    duration = spec["duration"]
+def study_motion(motion, spec, runs, duration, log=print):
+    """References, their convergence, the sweeps and the ratio table of one motion (when its runs
+    have them), and the observed order of the time error alone. ``spec``: MoorDyn's part
+    (``plan``); ``runs``: the motion's cablefem runs by role (``runs.cablefem_runs``)."""
     t_from = window_start(motion, duration)
     t_from = max(t_from, 0.0)
     log(f"== {motion}: {duration:g} s simulated, window {t_from:g}-{duration:g} s")
     entry = {"duration_s": duration, "window_s": [t_from, duration]}
-    if "cablefem_reference" in spec:
-        references_and_sweeps(motion, spec, entry, log)
-    order, elements = spec["time_order"]["mesh"]
-    fine = run_cablefem(motion, duration, CablefemSettings(order, elements, spec["time_order"]["reference_dt"]))
-    dts = spec["time_order"]["dts"]
-    time_errors = [error_against(run_cablefem(motion, duration, CablefemSettings(order, elements, dt)), fine, t_from)
-                   for dt in dts]
-    entry["time_order"] = {"mesh": f"P{order} x {elements}", "dt": list(dts), "errors": time_errors,
-                           "reference_dt": spec["time_order"]["reference_dt"], "order": observed_order(dts, time_errors)}
-    log(f"  time error alone, P{order} x {elements} BDF2 against dt {spec['time_order']['reference_dt']:g}: "
+    if "reference" in runs:
+        references_and_sweeps(motion, spec, runs, entry, log)
+    (fine_settings, fine), = runs["time-order-reference"]
+    dts = [settings.dt for settings, _ in runs["time-order"]]
+    time_errors = [error_against(run, fine, t_from) for _, run in runs["time-order"]]
+    order, elements = fine_settings.order, fine_settings.elements
+    entry["time_order"] = {"mesh": f"P{order} x {elements}", "dt": dts, "errors": time_errors,
+                           "reference_dt": fine_settings.dt, "order": observed_order(dts, time_errors)}
+    log(f"  time error alone, P{order} x {elements} BDF2 against dt {fine_settings.dt:g}: "
         + ", ".join(f"dt {dt:g}: {e:.2e}" for dt, e in zip(dts, time_errors))
         + f"; observed order {entry['time_order']['order']:.2f}")
     return entry
 
 
-def references_and_sweeps(motion, spec, entry, log=print):
+def references_and_sweeps(motion, spec, runs, entry, log=print):
     """Fill ``entry`` with the references, their checks, both sweeps, the Pareto fronts and ratios."""
-    duration = spec["duration"]
-    t_from = entry["window_s"][0]
+    duration, t_from = entry["window_s"][1], entry["window_s"][0]
 
-    cf_ref = run_cablefem(motion, duration, spec["cablefem_reference"])
-    log(f"cablefem reference {spec['cablefem_reference'].label()}: {cf_ref['wall_time_s']:.1f} s")
+    (cf_settings, cf_ref), = runs["reference"]
+    log(f"cablefem reference {cf_settings.label()}: {cf_ref['wall_time_s']:.1f} s")
     md_ref = run_moordyn(motion, duration, spec["moordyn_reference"])
     if not md_ref["stable"]:
         raise RuntimeError(f"MoorDyn reference {spec['moordyn_reference'].label()} failed")
     log(f"MoorDyn reference {spec['moordyn_reference'].label()}: {md_ref['wall_time_s']:.1f} s")
     raw = {"t": md_ref["t"], "tension": md_ref["tension_raw"]}
     entry["references"] = {
-        "cablefem": {"settings": asdict(spec["cablefem_reference"]), "wall_time_s": cf_ref["wall_time_s"],
+        "cablefem": {"settings": asdict(cf_settings), "wall_time_s": cf_ref["wall_time_s"],
                      "mean_tension_N": float(np.mean(cf_ref["tension"][cf_ref["t"] >= t_from - 1e-9]))},
         "moordyn": {"settings": asdict(spec["moordyn_reference"]), "wall_time_s": md_ref["wall_time_s"]},
         # the model floor: the two finest runs against each other, on MoorDyn's output times
         "moordyn_vs_cablefem": error_against(md_ref, cf_ref, t_from),
         "moordyn_raw_vs_cablefem": error_against(raw, cf_ref, t_from),
         "checks": []}
-    for settings in spec["cablefem_reference_checks"]:
-        check = run_cablefem(motion, duration, settings)
+    for settings, check in runs["check"]:
         change = error_against(check, cf_ref, t_from)
         entry["references"]["checks"].append({"code": "cablefem", "label": settings.label(), "change": change,
                                               "wall_time_s": check["wall_time_s"]})
@@ -381,6 +263,36 @@ def references_and_sweeps(motion, spec, entry, log=print):
         log(f"  MoorDyn {settings.label()} without its IC solve against with it (threshIC 1e-5): "
             f"{entry['references']['moordyn_ic_check']['change']:.1e}")
 
+    moordyn_rows, attempts = moordyn_sweep(motion, spec, duration, md_ref, cf_ref, t_from, log)
+    entry["moordyn_attempts"] = attempts
+    entry["moordyn"] = moordyn_rows
+    # MoorDyn's reference against the next finest run (most segments below it, smallest dtM)
+    finest = max(moordyn_rows, key=lambda r: (r["settings"]["segments"], -r["settings"]["dtM"]))
+    entry["references"]["moordyn_next"] = {"label": finest["label"], "change": finest["error"]}
+
+    cablefem_rows = []
+    for settings, result in runs["row"]:
+        row = {"label": settings.label(), "settings": asdict(settings), "wall_time_s": result["wall_time_s"]}
+        if "failed" in result:
+            row.update(error=None, failed=result["failed"])
+            log(f"  cablefem {row['label']:<52} FAILED after {row['wall_time_s']:.2f} s: {result['failed']}")
+        else:
+            row.update(error=error_against(result, cf_ref, t_from),
+                       error_vs_moordyn_reference=error_against(result, md_ref, t_from), repeats=result["repeats"],
+                       **{key: result[key] for key in ("steps", "rejected", "newton_iterations", "nfev", "nlu")})
+            log(f"  cablefem {row['label']:<52} error {row['error']:.2e} {row['wall_time_s']:7.2f} s "
+                f"({row['newton_iterations'] / max(row['steps'], 1):.2f} Newton/step)")
+        cablefem_rows.append(row)
+    entry["cablefem"] = cablefem_rows
+    entry["pareto"] = {"moordyn": [r["label"] for r in pareto(moordyn_rows)],
+                       "cablefem": [r["label"] for r in pareto(cablefem_rows)]}
+    entry["ratios"] = ratios(moordyn_rows, cablefem_rows)
+    entry["series"] = {"cablefem_reference": cf_ref, "moordyn_reference": md_ref}
+
+
+def moordyn_sweep(motion, spec, duration, md_ref, cf_ref, t_from, log=print):
+    """MoorDyn at each segment count of ``spec``, from its largest stable dtM down, keeping as many
+    stable runs as the spec says: (rows with errors against both references, every attempt)."""
     limit = 2.0 * float(np.max(cf_ref["tension"]))
     moordyn_rows, attempts = [], []
     for segments, keep in spec["moordyn_segments"].items():
@@ -405,38 +317,13 @@ def references_and_sweeps(motion, spec, entry, log=print):
             found += 1
             if found == keep:
                 break
-    entry["moordyn_attempts"] = attempts
-    entry["moordyn"] = moordyn_rows
-    # MoorDyn's reference against the next finest run (most segments below it, smallest dtM)
-    finest = max(moordyn_rows, key=lambda r: (r["settings"]["segments"], -r["settings"]["dtM"]))
-    entry["references"]["moordyn_next"] = {"label": finest["label"], "change": finest["error"]}
-
-    cablefem_rows = []
-    for settings in spec["cablefem"]:
-        result = run_cablefem(motion, duration, settings)
-        row = {"label": settings.label(), "settings": asdict(settings), "wall_time_s": result["wall_time_s"]}
-        if "failed" in result:
-            row.update(error=None, failed=result["failed"])
-            log(f"  cablefem {row['label']:<52} FAILED after {row['wall_time_s']:.2f} s: {result['failed']}")
-        else:
-            result = least_time(lambda: run_cablefem(motion, duration, settings), spec.get("repeats", REPEATS))
-            row.update(error=error_against(result, cf_ref, t_from),
-                       error_vs_moordyn_reference=error_against(result, md_ref, t_from), wall_time_s=result["wall_time_s"],
-                       repeats=result["repeats"],
-                       **{key: result[key] for key in ("steps", "rejected", "newton_iterations", "nfev", "nlu")})
-            log(f"  cablefem {row['label']:<52} error {row['error']:.2e} {row['wall_time_s']:7.2f} s "
-                f"({row['newton_iterations'] / max(row['steps'], 1):.2f} Newton/step)")
-        cablefem_rows.append(row)
-    entry["cablefem"] = cablefem_rows
-    entry["pareto"] = {"moordyn": [r["label"] for r in pareto(moordyn_rows)],
-                       "cablefem": [r["label"] for r in pareto(cablefem_rows)]}
-    entry["ratios"] = ratios(moordyn_rows, cablefem_rows)
-    entry["series"] = {"cablefem_reference": cf_ref, "moordyn_reference": md_ref}
+    return moordyn_rows, attempts
 
 
 def warm_up():
-    """A few steps of every element order, so that numba's compile (cached on disk after the
-    first run ever) and first-call costs stay out of the timings."""
+    """A few steps of every element order and of MoorDyn in this process (where MoorDyn's timed runs
+    and the profile run), so that numba's compile (cached on disk after the first run ever) and
+    first-call costs stay out of the timings; the Dask workers warm themselves (cablefem.sweeps)."""
     for order in (1, 2, 3):
         run_cablefem("snap", 0.1, CablefemSettings(order, 4, 0.05))
     run_moordyn("snap", 0.1, MoordynSettings(20, 0.005))
@@ -459,17 +346,26 @@ def profile_run(motion="snap", settings=CablefemSettings(2, 80, 0.01), duration=
             "nlu": result["nlu"], "top": rows}
 
 
-def run(fast=False, log=print, profile=True):
-    """The whole study; returns (results dict, series for the figures)."""
+def run(fast=False, log=print, profile=True, client=None, runs_dir=None):
+    """The whole study; returns (results dict, series for the figures). cablefem's runs go to Dask
+    (``client``, or a LocalCluster of one worker per core) into ``runs_dir`` (default: a temporary
+    folder, removed after; a kept one lets an interrupted study resume)."""
     from importlib.metadata import version
 
     begin = time.perf_counter()
     warm_up()
+    runs_kept = runs_dir is not None
+    runs_dir = Path(runs_dir) if runs_kept else Path(tempfile.mkdtemp(prefix="cablefem-work-precision-"))
+    try:
+        runs, durations = cablefem_runs(fast, runs_dir, client=client, log=log)
+    finally:
+        if not runs_kept:
+            shutil.rmtree(runs_dir, ignore_errors=True)
     results = {"fast": fast, "moordyn_version": version("moordyn"), "coupling_dt_s": COUPLING_DT,
                "window_periods": WINDOW_PERIODS, "motions": {}}
     series = {}
     for motion, spec in plan(fast).items():
-        entry = study_motion(motion, spec, log)
+        entry = study_motion(motion, spec, runs[motion], durations[motion], log)
         if "series" in entry:
             series[motion] = entry.pop("series")
         results["motions"][motion] = entry
@@ -639,13 +535,21 @@ def main(argv=None):
     parser.add_argument("--out", type=Path, default=HERE, help="directory for results.json and the PNGs")
     parser.add_argument("--replot", action="store_true", help="redraw the PNGs from OUT/results.json and "
                         "OUT/references.npz without running")
+    parser.add_argument("--runs", type=Path, help="keep cablefem's runs here (a re-run resumes); default: "
+                        "a temporary folder")
+    parser.add_argument("--workers", type=int, metavar="N", help="local Dask cluster: worker processes "
+                        "(default: one per core)")
+    parser.add_argument("--scheduler", metavar="ADDRESS", help="an existing Dask cluster instead")
     args = parser.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
     if args.replot:
         results = json.loads((args.out / "results.json").read_text())
         series = read_series(args.out / "references.npz")
     else:
-        results, series = run(fast=args.fast)
+        from cablefem.sweeps.engine import connect
+
+        with connect(scheduler=args.scheduler, workers=args.workers) as client:
+            results, series = run(fast=args.fast, client=client, runs_dir=args.runs)
         (args.out / "results.json").write_text(json.dumps(_json_ready(results), indent=1))
         write_series(args.out / "references.npz", series)
     print(report(results))
