@@ -46,7 +46,9 @@ class LineType:
     ``diameter`` is the volume-equivalent diameter [m] used for buoyancy,
     drag and seabed contact; ``mass`` is the mass in air per unit unstretched
     length [kg/m]; ``EA`` the axial stiffness [N]; ``damping`` is beta [s] in
-    T = EA (e + beta de/dt) (desire2023 Eq. 2).
+    T = EA (e + beta de/dt) (desire2023 Eq. 2), no tension at all where slack; with
+    ``damping_when_slack``, MoorDyn-C's law T = EA (max(e, 0) + beta de/dt): the damping part acts in
+    slack segments too (``cablefem.loads.tension``).
     """
 
     name: str
@@ -58,12 +60,15 @@ class LineType:
     Cd_tangential: float = 0.0
     Ca_normal: float = 1.0
     Ca_tangential: float = 0.0
+    damping_when_slack: bool = False
 
     def __post_init__(self):
         for key in ("diameter", "mass", "EA"):
             object.__setattr__(self, key, _positive(getattr(self, key), key))
         for key in ("damping", "Cd_normal", "Cd_tangential", "Ca_normal", "Ca_tangential"):
             object.__setattr__(self, key, _positive(getattr(self, key), key, allow_zero=True))
+        if not isinstance(self.damping_when_slack, (bool, np.bool_)):
+            raise InputError(f"expected true or false, got {self.damping_when_slack!r}", key="damping_when_slack")
 
     @property
     def area(self):

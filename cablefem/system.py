@@ -29,7 +29,7 @@ def element_properties(line):
     types = [seg.type for seg in line.segments]
     index = line.element_segments()
     names = ("diameter", "mass", "EA", "damping", "Cd_normal", "Cd_tangential",
-             "Ca_normal", "Ca_tangential", "area")
+             "Ca_normal", "Ca_tangential", "area", "damping_when_slack")
     return {name: np.array([getattr(t, name) for t in types])[index] for name in names}
 
 

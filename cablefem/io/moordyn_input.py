@@ -352,7 +352,8 @@ def _line_type(raw, raw_types, built):
     if name not in built:  # values were checked by _line_types
         built[name] = LineType(name, props["Diam"], props["MassDen"], props["EA"], beta,
                                Cd_normal=props["Cd"], Cd_tangential=math.pi * props["CdAx"],
-                               Ca_normal=props["Ca"], Ca_tangential=props["CaAx"])
+                               Ca_normal=props["Ca"], Ca_tangential=props["CaAx"],
+                               damping_when_slack=True)  # MoorDyn-C's own law (Line.cpp, Td[i])
     return built[name]
 
 

@@ -60,7 +60,7 @@ ENVIRONMENT_KEYS = {"water_density": v.limited(v.positive, "water_density"),
 LINE_TYPE_KEYS = {"diameter": v.limited(v.positive, "diameter"), "mass": v.limited(v.positive, "mass"),
                   "EA": v.limited(v.positive, "EA"), "damping": v.limited(v.non_negative, "damping_time"),
                   "Cd_normal": _COEFFICIENT, "Cd_tangential": _COEFFICIENT, "Ca_normal": _COEFFICIENT,
-                  "Ca_tangential": _COEFFICIENT}
+                  "Ca_tangential": _COEFFICIENT, "damping_when_slack": v.boolean}
 LINE_KEYS = {"name": v.text, "anchor": _POINT, "fairlead": _POINT, "segments": v.tables, "order": _ORDER}
 SEGMENT_KEYS = {"type": v.text, "length": _LENGTH, "elements": _ELEMENTS}
 CONTACT_KEYS = {"stiffness": v.limited(v.positive, "stiffness"),

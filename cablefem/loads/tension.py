@@ -11,6 +11,16 @@ out-of-plane stiffness without tension): its tangent gets a tiny isotropic
 stiffness ``SLACK_STIFFNESS`` EA instead, which changes the Newton path, not
 the equilibrium. ``compression=True`` lets the line push (T = EA e for all
 e); statics starts with it, see ``cablefem.statics``.
+
+Two damping laws, per line type (``damping_when_slack``): by default the one
+above, where a slack element carries nothing (a chain's links go loose: no
+force, no dissipation); or MoorDyn-C's (``Line.cpp``: ``Td[i] = BA ldstr[i] /
+l[i] qs[i]``, only the elastic part zeroed when slack),
+
+    T = EA max(e, 0) + EA beta de/dt,
+
+where the damping part acts in slack segments too and may push. MoorDyn input
+files are read with it, so that both codes run the same physics.
 """
 
 import numpy as np
@@ -49,11 +59,14 @@ class Tension:
     name = "tension"
     rule = "reduced"
 
-    def __init__(self, EA, beta=None, compression=False):
+    def __init__(self, EA, beta=None, compression=False, slack_damping=None):
         self.EA = np.asarray(EA, dtype=float)[:, None]
         self.compression = compression  # True: T = EA e also for e < 0 (a statics start-up aid)
         beta = None if beta is None else np.asarray(beta, dtype=float)[:, None]
         self.beta = beta if beta is not None and np.any(beta > 0) else None
+        # per element: MoorDyn-C's law, the damping part acting in slack segments too
+        self.slack_damping = (np.asarray(slack_damping, dtype=bool)[:, None]
+                              if slack_damping is not None and np.any(slack_damping) else None)
 
     def evaluate(self, state, jacobian=True):
         dr, dv = state.dr, state.dv
@@ -64,18 +77,24 @@ class Tension:
         T = self.EA * (e + (self.beta * rate if damped else 0.0))
         active = np.full(e.shape, True) if self.compression else (e > 0.0) & (T > 0.0)
         T = np.where(active, T, 0.0)
+        elastic = damping = active.astype(float)  # where each part of T acts
+        if self.slack_damping is not None and damped and not self.compression:
+            # MoorDyn-C: the elastic part is zero when slack, the damping part acts always
+            moordyn = self.EA * (np.maximum(e, 0.0) + self.beta * rate)
+            T = np.where(self.slack_damping, moordyn, T)
+            elastic = np.where(self.slack_damping, (e > 0.0).astype(float), elastic)
+            damping = np.where(self.slack_damping, 1.0, damping)
         terms = Terms(flux=T * t)
         if not jacobian:
             return terms
-        on = active.astype(float)
-        dT_ddr = self.EA * on * t
+        dT_ddr = self.EA * elastic * t
         if damped:
-            dT_ddr = dT_ddr + self.EA * self.beta * on * (dv - rate * t) / divisor
-            terms.flux_dv = outer(t, self.EA * self.beta * on * t)
+            dT_ddr = dT_ddr + self.EA * self.beta * damping * (dv - rate * t) / divisor
+            terms.flux_dv = outer(t, self.EA * self.beta * damping * t)
         tt = outer(t, t)
         eye = identity_like(t)
         terms.flux_dr = outer(t, dT_ddr) + (T / divisor) * (eye - tt) \
-            + (SLACK_STIFFNESS * self.EA * (1.0 - on)) * eye
+            + (SLACK_STIFFNESS * self.EA * (1.0 - elastic)) * eye
         return terms
 
     def energy(self, state):
@@ -89,7 +108,8 @@ class Tension:
         line may push (``compression``), read when a kernel is built."""
         nel = self.EA.shape[0]
         beta = np.zeros(nel) if self.beta is None else self.beta[:, 0]
-        return {"EA": self.EA[:, 0], "beta": beta, "pushes": np.full(nel, self.compression)}
+        slack = np.zeros(nel, dtype=bool) if self.slack_damping is None else self.slack_damping[:, 0]
+        return {"EA": self.EA[:, 0], "beta": beta, "pushes": np.full(nel, self.compression), "slack_damping": slack}
 
 
 @njit(cache=True, _nrt=False)
@@ -108,22 +128,30 @@ def tension_point(ctx, p, old, new, state, hold, out, M, u):
     e = stretch - 1.0
     rate = t0 * dv[0] + t1 * dv[1] + t2 * dv[2]
     T = EA * (e + beta * rate)
-    active = q.pushes or (ctx.held and hold.tension.pull) or (e > 0.0 and T > 0.0)
-    if not active:
-        T = 0.0
+    pulled = q.pushes or (ctx.held and hold.tension.pull)
+    if q.slack_damping and not q.pushes:  # MoorDyn-C: the damping part acts in slack segments too
+        elastic = 1.0 if pulled or e > 0.0 else 0.0
+        damping = 1.0
+        T = EA * (elastic * e + beta * rate)
+        taut = e > 0.0
+    else:
+        active = pulled or (e > 0.0 and T > 0.0)
+        if not active:
+            T = 0.0
+        elastic = damping = 1.0 if active else 0.0
+        taut = e > 0.0 and T > 0.0
     N[0] += T * t0
     N[1] += T * t1
     N[2] += T * t2
     if ctx.jac:
         t = (t0, t1, t2)
-        on = 1.0 if active else 0.0
         for i in range(3):
             for j in range(3):
-                dT = EA * on * t[j] + EA * beta * on * (dv[j] - rate * t[j]) / divisor
+                dT = EA * elastic * t[j] + EA * beta * damping * (dv[j] - rate * t[j]) / divisor
                 delta = 1.0 if i == j else 0.0
                 D[i, j] += t[i] * dT + (T / divisor) * (delta - t[i] * t[j]) \
-                    + SLACK_STIFFNESS * EA * (1.0 - on) * delta + v_x * EA * beta * on * t[i] * t[j]
-    state.tension.taut = e > 0.0 and T > 0.0
+                    + SLACK_STIFFNESS * EA * (1.0 - elastic) * delta + v_x * EA * beta * damping * t[i] * t[j]
+    state.tension.taut = taut
 
 
 @njit(cache=True, _nrt=False)
@@ -137,9 +165,11 @@ def tension_hold(base, state, hold, p, again):
 
 
 def build(setting):
-    """Every line carries its tension."""
-    return Tension(setting.props["EA"], setting.props["damping"])
+    """Every line carries its tension, with each line type's damping law."""
+    props = setting.props
+    return Tension(props["EA"], props["damping"], slack_damping=props["damping_when_slack"])
 
 
-SPEC = LoadSpec("tension", "reduced", (("EA", "f8"), ("beta", "f8"), ("pushes", "?")), tension_point, Tension,
+SPEC = LoadSpec("tension", "reduced", (("EA", "f8"), ("beta", "f8"), ("pushes", "?"), ("slack_damping", "?")),
+                tension_point, Tension,
                 state=(("taut", "?"),), hold=(("pull", "?"),), hold_rule=tension_hold, build=build)
