@@ -14,10 +14,10 @@ import hashlib
 from pathlib import Path
 
 #: the sources of the compiled kernels and of the constants compiled into them
-KERNEL_SOURCES = ("kernels.py", "march.py", "policy.py", "banded.py", "loads/__init__.py", "loads/catalog.py",
-                  "loads/_small.py", "loads/tension.py", "loads/gravity.py", "loads/contact.py", "loads/drag.py",
-                  "loads/added_mass.py", "geometry/_vertex_normal_jit.py", "geometry/grid.py",
-                  "geometry/triangulated.py")
+PATTERNS = ("kernels.py", "march.py", "policy.py", "banded.py", "loads/*.py", "geometry/_vertex_normal_jit.py",
+            "geometry/grid.py", "geometry/triangulated.py")  # every load of the catalog, whatever its file
+KERNEL_SOURCES = tuple(sorted(str(path.relative_to(Path(__file__).parent)) for pattern in PATTERNS
+                              for path in Path(__file__).parent.glob(pattern)))
 STAMP = "kernels.sha256"
 
 
@@ -25,7 +25,7 @@ def refresh(root=Path(__file__).parent):
     """Delete the cached kernels under ``root`` when ``KERNEL_SOURCES`` changed since the stamp
     ``root/__pycache__/kernels.sha256`` was written, then write it. Returns the number of cache
     files deleted. A read-only install is left alone (numba cannot cache there either)."""
-    sources = [root / name for name in KERNEL_SOURCES if (root / name).exists()]
+    sources = sorted(path for pattern in PATTERNS for path in root.glob(pattern))
     digest = hashlib.sha256(b"".join(path.read_bytes() for path in sources)).hexdigest()
     stamp = root / "__pycache__" / STAMP
     try:

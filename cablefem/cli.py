@@ -20,7 +20,8 @@ from .errors import ConvergenceError, InputError
 
 
 def _load(path):
-    from .scene import default_scene, load_scene
+    from .io import load_scene
+    from .scenes import default_scene
 
     return default_scene() if path is None else load_scene(path)
 

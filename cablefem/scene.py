@@ -1,8 +1,8 @@
 """A scene: lines + seabed + water + motion + solver settings (DESIGN.md, "The TOML scene").
 
-Scenes are loaded from TOML (``cablefem.io.toml_scene``) or from a MoorDyn v2
-input file (``cablefem.io.moordyn_input``); ``load_scene`` picks by content.
-Defaults of every optional key live here, in one place.
+Data only: scenes are read by ``cablefem.io.load_scene`` (TOML, ``cablefem.io.toml_scene``, or a
+MoorDyn v2 input file, ``cablefem.io.moordyn_input``); the built-in ones are in
+``cablefem.scenes``. Defaults of every optional key live here, in one place.
 """
 
 from dataclasses import dataclass, field
@@ -127,67 +127,15 @@ class Scene:
         return self.keys.get(key, (self.source, key))
 
 
-#: file extensions read as MoorDyn input files; anything else is tried as TOML first
-MOORDYN_EXTENSIONS = (".dat", ".txt", ".inp", ".in", ".moordyn")
+def __getattr__(name):
+    """``load_scene`` (``cablefem.io``) and ``default_scene`` (``cablefem.scenes``) by their old
+    names: this module holds the data only."""
+    if name in ("load_scene", "MOORDYN_EXTENSIONS"):
+        from . import io
 
+        return getattr(io, name)
+    if name == "default_scene":
+        from .scenes import default_scene
 
-def load_scene(path):
-    """The Scene of a TOML scene or MoorDyn v2 input file at ``path`` (str or path-like).
-
-    ``.toml`` is TOML and ``.dat``/``.txt``/``.inp``/``.in`` MoorDyn; any
-    other file is TOML when it parses as TOML with a scene's tables, MoorDyn
-    otherwise. Every error is an InputError naming the file, the key path and
-    the reason on one line. The scene-level checks of ``cablefem.io.checks`` (names,
-    problem size, ends against water and seabed, the motion's peak strain) run on
-    either kind before the scene is returned.
-    """
-    import os
-
-    from .errors import InputError
-    from .io.checks import check_scene
-
-    path = os.fspath(path)
-    try:
-        return check_scene(_read_scene(path))
-    except InputError as error:
-        located = error.within(file=path)
-        raise InputError(" ".join(located.reason.split()), key=located.key, file=located.file) from None
-    except OSError as error:
-        raise InputError(f"cannot read: {error.strerror or error}", file=path) from None
-
-
-def _read_scene(path):
-    """The Scene in the file at ``path`` as its reader gives it (``load_scene`` picks the reader)."""
-    import os
-
-    from .errors import InputError
-    from .io.moordyn_input import read_moordyn
-    from .io.toml_scene import TOP_LEVEL_KEYS, parse_toml, read_toml_scene
-
-    if not os.path.exists(path):
-        raise InputError("file not found")
-    if not os.path.isfile(path):
-        raise InputError("not a file")
-    if not os.access(path, os.R_OK):
-        raise InputError("file not readable")
-    extension = os.path.splitext(path)[1].lower()
-    if extension == ".toml":
-        return read_toml_scene(path)
-    if extension in MOORDYN_EXTENSIONS:
-        return read_moordyn(path)
-    try:
-        data = parse_toml(path)
-    except InputError:
-        data = None
-    if data and any(key in data for key in TOP_LEVEL_KEYS):
-        return read_toml_scene(path, data)
-    return read_moordyn(path)
-
-
-def default_scene():
-    """The built-in scene of ``cablefem static`` / ``run`` with no SCENE: the desire2023
-    steep-slope (19 deg) flume case with the dynamic 6 s / 5 m motion, 60 s at dt = 0.01 s,
-    40 P1 elements (``cablefem.scenes.flume_scene``; examples/flume_steep.toml)."""
-    from .scenes import flume_scene
-
-    return flume_scene("steep", "dynamic")
+        return default_scene
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -60,7 +60,7 @@ every = 1.0
 
 def measure(folder):
     """The toy loads' numbers (a dict for JSON); scenes and outputs go to ``folder``."""
-    from cablefem.scene import load_scene
+    from cablefem.io import load_scene
 
     results = {}
     results.update(_uniform(load_scene(_write(folder, "uniform.toml", UNIFORM_SCENE))))

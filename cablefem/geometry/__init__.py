@@ -15,9 +15,9 @@ __all__ += ["TriangulatedSurface"]
 
 from .grid import DepthGrid  # noqa: E402  (issue 3: rectangular grids, readers, generators)
 from .readers import read_seabed  # noqa: E402
-from .simplify import least_squares_plane, mean_depth_horizontal, simplify  # noqa: E402
+from .simplify import choose_seabed, least_squares_plane, mean_depth_horizontal, simplify  # noqa: E402
 from .export import write_seabed_vtu  # noqa: E402
 from . import generators  # noqa: E402
 
-__all__ += ["DepthGrid", "generators", "least_squares_plane", "mean_depth_horizontal",
+__all__ += ["DepthGrid", "choose_seabed", "generators", "least_squares_plane", "mean_depth_horizontal",
             "read_seabed", "simplify", "write_seabed_vtu"]

@@ -2,7 +2,7 @@
 
 The readers check each value where it is written: its type, its range and its
 sane limit (``validate.LIMITS``). What needs the whole scene is checked here,
-once for TOML and MoorDyn scenes alike (``cablefem.scene.load_scene``), and by
+once for TOML and MoorDyn scenes alike (``cablefem.io.load_scene``), and by
 ``run_scene`` for scenes built in Python:
 
 - names: the scene name starts every output file name, line names head

@@ -20,7 +20,7 @@ Mapping (each conversion checked against the MoorDyn 2.7 library, docs/scene.md)
   first line's anchor segment resting on the seabed (FricDamp is kept as well).
 
 Seabed (DESIGN.md "Model only what a scene needs"): a SeafloorFile grid that is
-planar is replaced by its plane (``choose_seabed``, shared with the TOML reader),
+planar is replaced by its plane (``geometry.choose_seabed``, shared with the TOML reader),
 and the note says which model was chosen.
 """
 
@@ -31,7 +31,7 @@ import re
 import numpy as np
 
 from ..errors import InputError
-from ..geometry import Horizontal, Plane, simplify as simplest_model
+from ..geometry import Horizontal, choose_seabed
 from ..geometry.readers import is_integer, is_number, parse_number
 from ..line import Line, LineType, Segment
 from ..scene import Contact, Environment, Friction, Scene, Solver
@@ -227,41 +227,6 @@ def _chains(lines, points):
                              "(anchor) and one Coupled (fairlead) end", key=_at(lines[chain[0]]["row"], f"LINES.{ids}"))
         chains.append(([lines[i] for i in chain], first, last))
     return chains
-
-
-def choose_seabed(seabed, lines, simplify=True):
-    """The seabed model a scene with ``lines`` uses, and one note (str) saying which and why.
-
-    A plane is kept as given. With ``simplify``, a grid or mesh that is
-    level or planar within 1e-9 of its extent becomes that Horizontal or Plane
-    (``cablefem.geometry.simplify``; point-to-plane projection), anything else
-    is kept (its general projection). A planar, sloping grid stays a grid when
-    an anchor or fairlead lies outside it in plan: there the grid is clamped
-    flat while its plane would go on sloping. ``simplify=False`` keeps the
-    model as read, untested (cost studies).
-    """
-    if isinstance(seabed, Plane):
-        return seabed, f"seabed: {seabed.describe()}"
-    if not simplify:
-        return seabed, (f"seabed: {seabed.describe()}, kept as read (simplify = false: "
-                        "not tested for flatness, general projection)")
-    said = []
-    chosen = simplest_model(seabed, notes=said)
-    note = said[-1] if said else f"seabed: kept {seabed.kind}"
-    bounds = getattr(seabed, "bounds", None)
-    if chosen is not seabed and not isinstance(chosen, Horizontal) and bounds is not None:
-        (x0, x1), (y0, y1) = bounds
-        ends = np.array([point for line in lines for point in (line.anchor, line.fairlead)])
-        slack = 1e-9 * max(x1 - x0, y1 - y0)
-        outside = ((ends[:, 0] < x0 - slack) | (ends[:, 0] > x1 + slack)
-                   | (ends[:, 1] < y0 - slack) | (ends[:, 1] > y1 + slack))
-        if outside.any():
-            return seabed, (f"seabed: kept {seabed.describe()}: it is planar ({chosen.describe()}), "
-                            "but a line end lies outside it in plan, where the grid is clamped flat "
-                            "and the plane would go on sloping")
-    if chosen is seabed:
-        return seabed, f"{note}: using {seabed.describe()}"
-    return chosen, f"{note} (point-to-plane projection)"
 
 
 def read_moordyn(path, simplify=True):

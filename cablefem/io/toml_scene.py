@@ -7,7 +7,7 @@ table takes lines, points, line types and options from a MoorDyn v2 file;
 keys written in the TOML then override, one key at a time, what the MoorDyn
 file gave (``read_toml_scene`` states the rule). A grid, mesh or points seabed
 that is planar becomes its plane unless ``[seabed] simplify = false``
-(``moordyn_input.choose_seabed``); ``scene.notes`` says which model was chosen.
+(``geometry.choose_seabed``); ``scene.notes`` says which model was chosen.
 """
 
 import math
@@ -24,12 +24,12 @@ import numpy as np
 
 from ..errors import InputError
 from ..loads import catalog
-from ..geometry import Horizontal, Plane
+from ..geometry import Horizontal, Plane, choose_seabed
 from ..geometry.readers import MAX_COORDINATE, parse_number
 from ..line import Line, LineType, Segment
 from ..scene import INTEGRATORS, Contact, Environment, Friction, Motion, Output, Scene, Solver
 from . import validate as v
-from .moordyn_input import NO_MOTION_NOTE, choose_seabed, read_moordyn
+from .moordyn_input import NO_MOTION_NOTE, read_moordyn
 
 TOP_LEVEL_KEYS = ("name", "environment", "line_types", "lines", "seabed", "friction",
                   "motion", "solver", "output", "moordyn")

@@ -38,7 +38,7 @@ from cablefem.loads.added_mass import AddedMass  # noqa: E402
 from cablefem.loads.drag import Drag  # noqa: E402
 from cablefem.motion import fairlead_motion  # noqa: E402
 from cablefem.run import boundary_path, build_system, start_states  # noqa: E402
-from cablefem.scene import load_scene  # noqa: E402
+from cablefem.io import load_scene  # noqa: E402
 from cablefem.statics import solve_static  # noqa: E402
 from cablefem.scenes import FLUME_ANCHOR, FLUME_DEPTH, FLUME_MOTIONS, table5_chain  # noqa: E402
 

@@ -215,7 +215,7 @@ def equivalence(folder):
     general one (simplify off) with the plane solved on the same mesh, without the touchdown
     fitting that statics gives planes only (its effect is the row "plane, fitted").
     """
-    from cablefem.scene import load_scene
+    from cablefem.io import load_scene
 
     rows, references = [], {}
     for label, on, file in write_scenes(folder):
@@ -260,7 +260,7 @@ def _spread(values):
 
 def static_cost(folder, repeats=5):
     """(b): CPU seconds of the static solve over the planar mesh, detected and not, and the plane."""
-    from cablefem.scene import load_scene
+    from cablefem.io import load_scene
     from cablefem.statics import solve_static
     from cablefem.system import LineSystem
 
