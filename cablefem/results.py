@@ -8,7 +8,6 @@ tensions differentiated from the positions.
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 
 @dataclass
@@ -69,6 +68,8 @@ def touchdown(system, X, samples_per_element=16):
         return float(s[-1])
     def gap(q):
         return system.gap_at(X, np.array([q]))[0]
+
+    from scipy.optimize import brentq
 
     a, b = s[last], s[last + 1]
     if gap(a) * gap(b) > 0:  # d_G touches zero without crossing: no root to refine

@@ -11,7 +11,6 @@ vertex-normal projection, as in the paper.
 """
 
 from .geometry import Horizontal
-from .geometry.generators import flume_step, triangulated_step
 from .line import Line, LineType, Segment
 from .scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
 
@@ -37,6 +36,8 @@ def flume_seabed(kind):
     """The flume seabed ``kind`` ("flat", "gentle", "steep") as the model a run uses."""
     if kind == "flat":
         return Horizontal(FLUME_DEPTH)
+    from .geometry.generators import flume_step, triangulated_step  # grids and meshes: not for a plane
+
     return triangulated_step(flume_step(kind, depth=FLUME_DEPTH))
 
 

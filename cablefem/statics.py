@@ -312,5 +312,11 @@ def _stiffness_continuation(system, X, tolerance, max_iterations, factor=10.0):
     return X, total, norm, history, True
 
 
-# solve_line and the touchdown fitting live in cablefem.touchdown, which builds on this module
-from .touchdown import anchored_on_plane, resting_length, solve_line  # noqa: E402, F401
+def __getattr__(name):
+    """``solve_line`` and the touchdown fitting, which live in ``cablefem.touchdown`` (it builds on
+    this module), by their old names here."""
+    if name in ("anchored_on_plane", "resting_length", "solve_line"):
+        from . import touchdown
+
+        return getattr(touchdown, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

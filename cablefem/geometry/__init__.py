@@ -2,22 +2,30 @@
 
 Every seabed implements ``Seabed.project`` (penetration depth, projection
 direction, closest point and their derivatives) for points of shape (n, 3).
+
+The planes are imported with the package; everything else (grids, triangulated
+surfaces with their compiled walk, readers, generators) on first use, so that a
+scene on a plane loads none of that machinery (start-up of ``cablefem static``).
 """
+
+from importlib import import_module
 
 from .base import Projection, Seabed
 from .planes import Horizontal, Plane
+from .simplify import choose_seabed, least_squares_plane, mean_depth_horizontal, simplify  # light: planes only
 
-__all__ = ["Horizontal", "Plane", "Projection", "Seabed"]
+#: the package's other names -> the module that holds each
+_LAZY = {"TriangulatedSurface": "triangulated", "DepthGrid": "grid", "read_seabed": "readers",
+         "write_seabed_vtu": "export"}
 
-from .triangulated import TriangulatedSurface  # noqa: E402  (issue 3: vertex-normal projection)
+__all__ = ["Horizontal", "Plane", "Projection", "Seabed", "choose_seabed", "generators", "least_squares_plane",
+           "mean_depth_horizontal", "simplify", *_LAZY]
 
-__all__ += ["TriangulatedSurface"]
 
-from .grid import DepthGrid  # noqa: E402  (issue 3: rectangular grids, readers, generators)
-from .readers import read_seabed  # noqa: E402
-from .simplify import choose_seabed, least_squares_plane, mean_depth_horizontal, simplify  # noqa: E402
-from .export import write_seabed_vtu  # noqa: E402
-from . import generators  # noqa: E402
-
-__all__ += ["DepthGrid", "choose_seabed", "generators", "least_squares_plane", "mean_depth_horizontal",
-            "read_seabed", "simplify", "write_seabed_vtu"]
+def __getattr__(name):
+    """The lazily imported names (``_LAZY``) and the ``generators`` module."""
+    if name == "generators":
+        return import_module(f"{__name__}.generators")
+    if name in _LAZY:
+        return getattr(import_module(f"{__name__}.{_LAZY[name]}"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

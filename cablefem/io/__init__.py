@@ -2,11 +2,20 @@
 
 ``load_scene`` is the entry point for scenes (``cablefem.io.scenes`` picks the reader); the
 readers are ``read_toml_scene`` (``toml_scene``) and ``read_moordyn`` (``moordyn_input``).
-Writers (``vtk``, ``output``, ...) are imported from their own modules.
+Writers (``vtk``, ``output``, ...) are imported from their own modules. The readers are
+imported on first use: a writer does not load them.
 """
 
-from .moordyn_input import read_moordyn
-from .scenes import MOORDYN_EXTENSIONS, load_scene
-from .toml_scene import read_toml_scene
+from importlib import import_module
 
-__all__ = ["MOORDYN_EXTENSIONS", "load_scene", "read_moordyn", "read_toml_scene"]
+_LAZY = {"load_scene": "scenes", "MOORDYN_EXTENSIONS": "scenes", "read_moordyn": "moordyn_input",
+         "read_toml_scene": "toml_scene"}
+
+__all__ = list(_LAZY)
+
+
+def __getattr__(name):
+    """The readers by name, imported on first use."""
+    if name in _LAZY:
+        return getattr(import_module(f"{__name__}.{_LAZY[name]}"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -28,7 +28,6 @@ sliding counts as transverse.
 import numpy as np
 from numba import njit
 
-from ..geometry.triangulated import TriangulatedSurface
 from . import LoadSpec, Terms, add, compose, identity_like, outer, unit_tangent
 from ._small import add_matmul, add_outer, dot, unit_divisor
 
@@ -128,7 +127,7 @@ class SeabedContact:
 def _project(seabed, points, derivatives):
     """The seabed's projection of points (n, 3) [m]; a residual alone needs no derivatives,
     which the triangulated surface can skip (a third of its cost)."""
-    if not derivatives and isinstance(seabed, TriangulatedSurface):
+    if not derivatives and getattr(seabed, "kind", None) == "mesh":  # a TriangulatedSurface
         return seabed.project(points, derivatives=False)
     return seabed.project(points)
 
