@@ -154,10 +154,10 @@ class GeneralizedAlpha(Integrator):
 INTEGRATORS = {"bdf2": BDF2, "generalized-alpha": GeneralizedAlpha}
 
 
-def integrator_options(solver):
-    """Keyword arguments of ``INTEGRATORS[solver.integrator]`` from a scene's ``Solver`` (the one
-    place that knows which scene option goes to which integrator)."""
+def integrator_options(solver, name=None):
+    """Keyword arguments of ``INTEGRATORS[name]`` (default: ``solver.integrator``) from a scene's
+    ``Solver``: the one place that knows which scene option goes to which integrator."""
     options = {"tolerance": solver.tolerance, "newton": solver.newton}
-    if solver.integrator == "generalized-alpha":
+    if (name or solver.integrator) == "generalized-alpha":
         options["rho_inf"] = solver.rho_inf
     return options

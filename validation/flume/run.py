@@ -35,6 +35,7 @@ from pathlib import Path
 
 import numpy as np
 
+from cablefem import study
 from cablefem.post import read_tensions
 from cablefem.scenes import FLUME_MOTIONS, FLUME_SEABEDS
 
@@ -50,38 +51,6 @@ PAPER_LOWEST_PEAK = {"flat": 2.5e6, "gentle": 2.2e6, "steep": 2.0e6}
 #: convergence study itself and the sensitivity runs
 SWEEPS = {"full": HERE / "sweep.toml", "fast": HERE / "sweep_fast.toml",
           "convergence": HERE / "convergence.toml", "sensitivity": HERE / "sensitivity.toml"}
-
-
-def provenance():
-    """Which cablefem the numbers come from: git HEAD, whether cablefem/ has uncommitted
-    changes, and a digest of its source files (several people edit the tree at once)."""
-    import hashlib
-    import subprocess
-
-    import cablefem
-
-    root = Path(cablefem.__file__).resolve().parent
-    digest = hashlib.sha256()
-    for path in sorted(root.rglob("*.py")):
-        digest.update(path.read_bytes())
-    try:
-        git = lambda *args: subprocess.run(["git", *args], cwd=root, capture_output=True,  # noqa: E731
-                                           text=True, timeout=10).stdout.strip()
-        head = git("rev-parse", "--short", "HEAD") or None
-        dirty = bool(git("status", "--porcelain", ".")) if head else None  # None: not a git checkout
-    except (OSError, subprocess.SubprocessError):
-        head, dirty = None, None
-    return {"git_head": head, "cablefem_dirty": dirty, "cablefem_sha256": digest.hexdigest()[:16],
-            "cablefem_path": str(root)}
-
-
-def _stamp(started):
-    """Provenance at the start and end of a study, and whether cablefem changed in between."""
-    ended = provenance()
-    changed = started["cablefem_sha256"] != ended["cablefem_sha256"]
-    if changed:
-        print("warning: cablefem/ changed during this run; modules were imported at its start")
-    return {"start": started, "end": ended, "cablefem_changed_during_run": changed}
 
 
 def touchdown_x(points, gap):
@@ -282,7 +251,7 @@ def run(fast=False, runs_dir=None, frames=True, cases=None, client=None):
     parallel (``run_sweep``); a dict of plain numbers, with the series under "_series" keys."""
     keep = runs_dir is not None
     runs_dir = Path(runs_dir) if keep else Path(tempfile.mkdtemp(prefix="cablefem-flume-"))
-    started = provenance()
+    started = study.provenance()
     start = time.perf_counter()
     results = run_sweep("fast" if fast else "full", runs_dir, frames=frames,
                         select=None if cases is None else set(cases), client=client)
@@ -290,7 +259,7 @@ def run(fast=False, runs_dir=None, frames=True, cases=None, client=None):
     settings = {c["motion"]: {"elements": c["elements"], "dt": c["dt"], "periods": c["periods"]} for c in results}
     return {"fast": fast, "settings": settings, "cases": results, "findings": findings(results),
             "wall_time_s": wall, "runs_dir": str(runs_dir), "runs_kept": keep,
-            "provenance": _stamp(started)}
+            "provenance": study.stamp(started)}
 
 
 def convergence(runs_dir, client=None):
@@ -591,14 +560,6 @@ def _motion_words(motion):
     return f"T = {m.period:g} s, {m.amplitude[0]:g} m amplitude, {m.offset[0]:g} m drift"
 
 
-def plain(results):
-    """``results`` without the private series (JSON-ready)."""
-    strip = lambda c: {k: v for k, v in c.items() if not k.startswith("_")}  # noqa: E731
-    clean = dict(results)
-    clean["cases"] = [strip(c) for c in results["cases"]]
-    return clean
-
-
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--fast", action="store_true", help="short runs, 20 elements, under a minute")
@@ -622,27 +583,27 @@ def main(argv=None):
 
 def studies(args, client):
     """The studies ``main``'s arguments ask for, on the Dask ``client``."""
-    for wanted, study, table, name in ((args.convergence, convergence, report_convergence, "convergence"),
-                                       (args.sensitivity, sensitivity, report_sensitivity, "sensitivity")):
+    for wanted, measure, table, name in ((args.convergence, convergence, report_convergence, "convergence"),
+                                         (args.sensitivity, sensitivity, report_sensitivity, "sensitivity")):
         if not wanted:
             continue
         runs = args.runs or Path(tempfile.mkdtemp(prefix=f"cablefem-flume-{name}-"))
-        started, start = provenance(), time.perf_counter()
+        started, start = study.provenance(), time.perf_counter()
         try:
-            rows = study(runs, client=client)
+            rows = measure(runs, client=client)
         finally:
             if args.runs is None:
                 shutil.rmtree(runs, ignore_errors=True)
         print(table(rows))
         print(f"wall time {time.perf_counter() - start:.0f} s")
-        (args.out / f"{name}.json").write_text(json.dumps(
-            {"provenance": _stamp(started), "wall_time_s": time.perf_counter() - start, "rows": rows}, indent=1))
+        study.write_json(args.out / f"{name}.json",
+                         {"provenance": study.stamp(started), "wall_time_s": time.perf_counter() - start, "rows": rows})
     if args.convergence or args.sensitivity:
         return
     results = run(fast=args.fast, runs_dir=args.runs, client=client)
     try:
         print(report(results))
-        (args.out / "results.json").write_text(json.dumps(plain(results), indent=1))
+        study.write_json(args.out / "results.json", results)
         pngs = figures(results, args.out) + render_frames(results, args.out)
         print(f"wrote {args.out / 'results.json'} and {len(pngs)} PNGs")
     finally:

@@ -34,6 +34,7 @@ from pathlib import Path
 
 import numpy as np
 
+from cablefem import study
 from cablefem.geometry import DepthGrid, Horizontal, TriangulatedSurface
 from cablefem.geometry.generators import diamond_square
 from cablefem.line import Line, Segment
@@ -333,14 +334,9 @@ COST_PATHS = ("run_scene", "numpy")
 def numpy_path_run(scene):
     """A run of ``scene`` on the reference numpy assembly, time loop only (no output): dict with
     wall_time_s, steps, newton_iterations and the fairlead tension after each step (k,) [N]."""
-    from cablefem.dynamics import INTEGRATORS
-    from cablefem.run import boundary_path, build_system, start_states
-
-    solver, line = scene.solver, scene.lines[0]
+    solver = scene.solver
     start = time.perf_counter()
-    (X0,), _ = start_states(scene)
-    integrator = INTEGRATORS[solver.integrator](build_system(scene, line), X0, boundary_path(scene, line),
-                                                dt=solver.dt, tolerance=solver.tolerance, compiled=False)
+    integrator = study.start_line(scene, newton="auto", compiled=False)
     tensions = [np.linalg.norm(integrator.reactions()[0])]
     for _ in range(int(round(solver.duration / solver.dt))):
         integrator.step(solver.dt)
@@ -383,7 +379,7 @@ def cost_study(settings, runs_dir):
     from cablefem.statics import solve_line
 
     duration, repeats = settings["cost_duration"], settings["repeats"]
-    tree = provenance()
+    tree = study.provenance()
     paths = {}
     for path in COST_PATHS:
         rows = []
@@ -418,7 +414,7 @@ def cost_study(settings, runs_dir):
             "projection_call_s": calls, "projection_call_ratio": calls["general"] / calls["horizontal"],
             "paper_ratio": PAPER["table6_wall_time_s"]["general"] / PAPER["table6_wall_time_s"]["horizontal"],
             "provenance": tree,
-            "tree_changed_during_measurement": provenance()["cablefem_sha1"] != tree["cablefem_sha1"]}
+            "tree_changed_during_measurement": study.provenance()["cablefem_sha256"] != tree["cablefem_sha256"]}
 
 
 # ---------------------------------------------------------------- study
@@ -439,7 +435,7 @@ def run(fast=False, runs_dir=None, cost=True):
             seeds.append({"seed": seed, "surface": surface_statistics(grid), "methods": by_method,
                           "findings": findings(by_method), "_grid": grid})
         results = {"fast": fast, "settings": {k: list(v) if isinstance(v, tuple) else v for k, v in settings.items()},
-                   "setup": setup_description(), "provenance": provenance(), "paper": PAPER, "primary_seed": PRIMARY_SEED,
+                   "setup": setup_description(), "provenance": study.provenance(), "paper": PAPER, "primary_seed": PRIMARY_SEED,
                    "seeds": seeds, "robustness": robustness(seeds)}
         results["static_sweep"] = static_sweep(settings)
         if cost:
@@ -456,30 +452,8 @@ def write_outputs(results, target):
     target = Path(target)
     target.mkdir(parents=True, exist_ok=True)
     results["figures"] = make_figures(results, target)
-    (target / "results.json").write_text(json.dumps(_public(results), indent=1))
+    study.write_json(target / "results.json", results)
     return results["figures"] + ["results.json"]
-
-
-def provenance():
-    """The cablefem code the numbers come from: git HEAD, the uncommitted files under cablefem/
-    and a SHA-1 of the content of every cablefem/*.py (unchanged by a commit, changed by an edit)."""
-    import hashlib
-    import subprocess
-
-    root = HERE.parent.parent
-
-    def git(*args):
-        try:
-            return subprocess.run(["git", *args], cwd=root, capture_output=True, text=True, timeout=30).stdout
-        except (OSError, subprocess.SubprocessError):
-            return ""
-
-    digest = hashlib.sha1()
-    for path in sorted((root / "cablefem").rglob("*.py")):
-        digest.update(str(path.relative_to(root)).encode() + b"\0" + path.read_bytes())
-    changed = [line[3:] for line in git("status", "--porcelain", "--", "cablefem").splitlines() if line[3:]]
-    return {"git_head": git("rev-parse", "HEAD").strip() or None, "cablefem_uncommitted": changed,
-            "cablefem_sha1": digest.hexdigest()}
 
 
 def setup_description():
@@ -501,19 +475,6 @@ def robustness(seeds):
                 passed, total = counts.get(name, (0, 0))
                 counts[name] = (passed + int(finding["passed"]), total + 1)
     return {name: list(v) for name, v in counts.items()}
-
-
-def _public(value):
-    """results without the private "_..." keys, arrays as lists (for JSON)."""
-    if isinstance(value, dict):
-        return {k: _public(v) for k, v in value.items() if not str(k).startswith("_")}
-    if isinstance(value, (list, tuple)):
-        return [_public(v) for v in value]
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, (np.floating, np.integer)):
-        return value.item()
-    return value
 
 
 # ---------------------------------------------------------------- figures
@@ -826,15 +787,12 @@ def main(argv=None):
         print_table6(cost)
         if (target / "results.json").is_file() and not args.fast:
             results = json.loads((target / "results.json").read_text())
-            results["table6"] = _public(cost)
-            (target / "results.json").write_text(json.dumps(results, indent=1))
+            results["table6"] = study.jsonable(cost)
+            study.write_json(target / "results.json", results)
             print(f"updated table6 in {target / 'results.json'}")
         return
     if args.convergence:
-        study = convergence(args.runs)
-        target = Path(args.out or HERE)
-        target.mkdir(parents=True, exist_ok=True)
-        (target / "convergence.json").write_text(json.dumps(_public(study), indent=1))
+        study.write_json(Path(args.out or HERE) / "convergence.json", convergence(args.runs))
         return
     results = run(fast=args.fast, runs_dir=args.runs)
     print_report(results)

@@ -404,7 +404,8 @@ def _cablefem_steps(scene, states, duration, dt, hydro_per_unstretched, lumped):
                             for load in system.loads]
         integrators.append(INTEGRATORS[scene.solver.integrator](
             system, X0, boundary_path(scene, line), dt=dt, tolerance=scene.solver.tolerance,
-            newton="full", lumped=lumped))  # one Newton for the compiled and the numpy path (wrapped loads)
+            newton="full", lumped=lumped,  # one Newton for the compiled and the numpy path
+            compiled=not hydro_per_unstretched))  # wrapped loads have no compiled face: the numpy path
     steps = int(round(duration / dt))
     t = np.arange(steps + 1) * dt
     forces = np.empty((steps + 1, len(integrators), 3))

@@ -22,7 +22,6 @@ returns the numbers the tests assert on, in a few seconds.
 """
 
 import argparse
-import json
 import math
 import time
 from pathlib import Path
@@ -36,6 +35,7 @@ from cablefem.geometry import Horizontal
 from cablefem.results import end_forces
 from cablefem.scene import Contact, Environment
 from cablefem.statics import solve_line, solve_static
+from cablefem.study import write_json
 from cablefem.system import LineSystem
 
 HERE = Path(__file__).resolve().parent
@@ -605,20 +605,6 @@ def figures(results, out):
     plt.close("all")
 
 
-def _json_ready(value):
-    if isinstance(value, dict):
-        return {str(k): _json_ready(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_json_ready(v) for v in value]
-    if isinstance(value, np.ndarray):
-        return _json_ready(value.tolist())
-    if isinstance(value, (np.floating, float)):
-        return None if not math.isfinite(value) else float(value)
-    if isinstance(value, (np.integer, np.bool_)):
-        return value.item()
-    return value
-
-
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--fast", action="store_true", help="a few spans and offsets, a few seconds")
@@ -627,7 +613,7 @@ def main(argv=None):
     results = run(fast=args.fast)
     print(report(results))
     args.out.mkdir(parents=True, exist_ok=True)
-    (args.out / "results.json").write_text(json.dumps(_json_ready(results), indent=1))
+    write_json(args.out / "results.json", results, private=True, finite=True)
     figures(results, args.out)
     print(f"wrote {args.out / 'results.json'}, single_lines.png, spread_offset.png, spread_polar.png")
 

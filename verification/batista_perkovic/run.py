@@ -30,7 +30,6 @@ its fairlead there, and compared with
 
 import argparse
 import functools
-import json
 import math
 import time
 from pathlib import Path
@@ -43,6 +42,7 @@ from cablefem.line import Line, LineType, Segment
 from cablefem.results import report
 from cablefem.scene import Contact, Environment
 from cablefem.statics import solve_line, solve_static
+from cablefem.study import write_json
 from cablefem.system import LineSystem
 
 HERE = Path(__file__).resolve().parent
@@ -523,7 +523,7 @@ def main(argv=None):
     results = run(fast=args.fast, force=args.force, stiffness=args.stiffness)
     print(report_text(results))
     args.out.mkdir(parents=True, exist_ok=True)
-    (args.out / "results.json").write_text(json.dumps(results, indent=1))
+    write_json(args.out / "results.json", results, private=True)
     figures(results, args.out)
     print(f"wrote {args.out / 'results.json'}, fig8.png and convergence.png")
 

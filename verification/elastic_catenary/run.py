@@ -20,7 +20,6 @@ verification.elastic_catenary.run [--fast] [--out DIR] [--stiffness G_K]``;
 """
 
 import argparse
-import json
 import math
 import time
 from pathlib import Path
@@ -34,6 +33,7 @@ from cablefem.results import report
 from cablefem.scene import Contact, Environment
 from cablefem.scenes import table5_chain
 from cablefem.statics import solve_line, solve_static
+from cablefem.study import write_json
 from cablefem.system import LineSystem
 
 HERE = Path(__file__).resolve().parent
@@ -303,7 +303,7 @@ def main(argv=None):
     results = run(fast=args.fast, stiffness=args.stiffness)
     print(report_text(results))
     args.out.mkdir(parents=True, exist_ok=True)
-    (args.out / "results.json").write_text(json.dumps(results, indent=1))
+    write_json(args.out / "results.json", results, private=True)
     figures(results, args.out)
     print(f"wrote {args.out / 'results.json'} and convergence.png")
 

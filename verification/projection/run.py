@@ -15,7 +15,6 @@ and Table 6. Run ``python -m verification.projection.run [--fast] [--out DIR]``;
 """
 
 import argparse
-import json
 import time
 from pathlib import Path
 
@@ -23,6 +22,7 @@ import numpy as np
 from scipy.spatial import Delaunay
 
 from cablefem.geometry import Horizontal, Plane, TriangulatedSurface
+from cablefem.study import write_json
 
 HERE = Path(__file__).resolve().parent
 
@@ -299,7 +299,7 @@ def main(argv=None):
     results = run(fast=args.fast)
     print(report(results))
     args.out.mkdir(parents=True, exist_ok=True)
-    (args.out / "results.json").write_text(json.dumps(results, indent=1))
+    write_json(args.out / "results.json", results, private=True)
     figures(results, args.out)
     print(f"wrote {args.out / 'results.json'} and 3 figures")
 

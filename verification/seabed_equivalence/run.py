@@ -335,16 +335,12 @@ def dynamic_run(seabed, duration, dt=0.01, kind="flat", count_projection=False, 
     False): (CPU s, wall s of the time steps, integrator, CPU s spent in seabed.project and its
     number of calls when ``count_projection``). Counting needs the calls in Python: those runs
     take the per-step Python path (``cablefem.march`` projects inside its compiled loop)."""
-    from cablefem.dynamics import INTEGRATORS
-    from cablefem.run import StepControl, boundary_path, build_system, start_states
+    from cablefem.run import StepControl
     from cablefem.scenes import flume_scene
+    from cablefem.study import start_line
 
     scene = replace(flume_scene(kind, "dynamic", duration=duration, dt=dt), seabed=seabed)
-    (X0,), _ = start_states(scene)
-    line = scene.lines[0]
-    integrator = INTEGRATORS["bdf2"](build_system(scene, line), X0, boundary_path(scene, line),
-                                     dt=dt, tolerance=scene.solver.tolerance,
-                                     newton="modified" if modified_newton else "full")
+    integrator = start_line(scene, integrator="bdf2", newton="modified" if modified_newton else "full")
     spent = [0.0, 0]
     if count_projection:  # an instance attribute shadows the method for this run only
         integrator.marcher = None

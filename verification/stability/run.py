@@ -37,7 +37,6 @@ from pathlib import Path
 import numpy as np
 
 from cablefem.catenary import elastic_catenary, inclined_catenary
-from cablefem.dynamics import INTEGRATORS
 from cablefem.errors import ConvergenceError
 from cablefem.geometry import Horizontal
 from cablefem.line import Line, LineType, Segment
@@ -45,10 +44,11 @@ from cablefem.loads import State
 from cablefem.loads.added_mass import AddedMass
 from cablefem.loads.drag import Drag
 from cablefem.motion import fairlead_motion
-from cablefem.run import boundary_path, build_system, run_scene, start_states
+from cablefem.run import build_system, run_scene
 from cablefem.scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
 from cablefem.scenes import FLUME_ANCHOR, FLUME_DEPTH, flume_scene, table5_chain
 from cablefem.statics import solve_static
+from cablefem.study import jsonable, start_line, write_json
 
 HERE = Path(__file__).resolve().parent
 LENGTH = 635.0  # m, the desire2023 line (Tables 2 and 5)
@@ -151,19 +151,14 @@ def simulate(scene, dt, duration, integrator="bdf2", energy=True, monitor=None, 
     counters, wall time and, with ``energy``, the energy balance. ``monitor(integ)`` is
     called after every step; ``integrator_class`` replaces cablefem's class for ``integrator``
     (the diagnosis of case 7). A ConvergenceError becomes the status "stopped: <message>"."""
-    line = scene.lines[0]
     out = {"dt": dt, "integrator": integrator, "duration": duration}
     start = time.perf_counter()
     try:
-        states, _ = start_states(scene)
+        integ = start_line(scene, dt=dt, integrator=integrator_class or integrator)
     except ConvergenceError as error:
         out.update(status=f"static start failed: {error}", completed=False, wall_time_s=0.0,
                    t=np.zeros(0), fairlead_tension=np.zeros(0), anchor_tension=np.zeros(0))
         return out
-    system = build_system(scene, line)
-    options = {"rho_inf": scene.solver.rho_inf} if integrator == "generalized-alpha" else {}
-    integ = (integrator_class or INTEGRATORS[integrator])(system, states[0], boundary_path(scene, line), dt=dt,
-                                    tolerance=scene.solver.tolerance, **options)
     ledger = EnergyLedger(integ) if energy else None
     fairlead, anchor = integ.reactions()
     times, tensions, anchors = [integ.t], [np.linalg.norm(fairlead)], [np.linalg.norm(anchor)]
@@ -875,29 +870,14 @@ def figures(results, out):
     plt.close("all")
 
 
-def _jsonable(results):
-    def clean(value):
-        if isinstance(value, dict):
-            return {str(k): clean(v) for k, v in value.items() if k != "integ"}
-        if isinstance(value, (list, tuple)):
-            return [clean(v) for v in value]
-        if isinstance(value, np.ndarray):
-            return value.tolist()
-        if isinstance(value, (np.floating, np.integer, np.bool_)):
-            return value.item()
-        return value
-    return clean(results)
-
-
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--fast", action="store_true", help="short runs and fewer dt: what the tests assert")
     parser.add_argument("--out", type=Path, default=HERE, help="directory for results.json and tensions.png")
     parser.add_argument("--case", nargs="+", choices=CASES, default=list(CASES), help="cases to run")
     args = parser.parse_args(argv)
-    results = _jsonable(run(fast=args.fast, cases=tuple(args.case)))
-    args.out.mkdir(parents=True, exist_ok=True)
-    (args.out / "results.json").write_text(json.dumps(results, indent=1))
+    results = jsonable(run(fast=args.fast, cases=tuple(args.case)), private=True, drop=("integ",))
+    write_json(args.out / "results.json", results)
     print(report_text(results))
     figures(results, args.out)
     print(f"wrote {args.out / 'results.json'} and tensions.png")
