@@ -1,4 +1,4 @@
-"""The ``cablefem`` command (DESIGN.md, "Interfaces that users rely on").
+"""The ``cablefem`` command (docs/outputs.md: its commands, flags and the fields it writes).
 
 User errors (bad scene, unreadable file, an output folder that cannot be
 written) print one line naming the file, the key and the reason and exit with

@@ -1,4 +1,4 @@
-"""Prescribed fairlead motions: fixed, harmonic, circular and tabulated (DESIGN.md [motion]).
+"""Prescribed fairlead motions: fixed, harmonic, circular and tabulated (docs/scene.md, [motion]).
 
 A motion gives the displacement of the fairlead from its scene position, and
 its velocity and acceleration, at time t. The whole displacement (offset

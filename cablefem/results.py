@@ -32,7 +32,7 @@ class LineReport:
         return float(np.linalg.norm(self.anchor_force))
 
     def as_dict(self):
-        """The JSON fields of DESIGN.md for one line."""
+        """The JSON fields of one line (docs/outputs.md, ``cablefem static``)."""
         return {
             "name": self.name,
             "fairlead_force": self.fairlead_force.tolist(),

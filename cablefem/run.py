@@ -1,7 +1,7 @@
 """Time-domain runs of a scene: static start, implicit steps, outputs written as the run goes.
 
 A run writes DIR/<name>.pvd with one .vtu per output frame, DIR/seabed.vtu,
-DIR/tensions.csv (one row per time step) and DIR/summary.json (DESIGN.md).
+DIR/tensions.csv (one row per time step) and DIR/summary.json (docs/outputs.md).
 Frames and rows are written while the run goes, so memory does not grow
 with the duration, and each is written whole or not at all
 (``cablefem.io.output``): a run stopped by Ctrl-C, SIGTERM, a solver failure

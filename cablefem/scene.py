@@ -1,4 +1,4 @@
-"""A scene: lines + seabed + water + motion + solver settings (DESIGN.md, "The TOML scene").
+"""A scene: lines + seabed + water + motion + solver settings (docs/scene.md: every key).
 
 Data only: scenes are read by ``cablefem.io.load_scene`` (TOML, ``cablefem.io.toml_scene``, or a
 MoorDyn v2 input file, ``cablefem.io.moordyn_input``); the built-in ones are in

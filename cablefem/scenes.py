@@ -64,6 +64,4 @@ def default_scene():
     """The built-in scene of ``cablefem static`` / ``run`` with no SCENE: the desire2023
     steep-slope (19 deg) flume case with the dynamic 6 s / 5 m motion, 60 s at dt = 0.01 s,
     40 P1 elements (``cablefem.scenes.flume_scene``; examples/flume_steep.toml)."""
-    from .scenes import flume_scene
-
     return flume_scene("steep", "dynamic")

@@ -19,7 +19,7 @@ Mapping (each conversion checked against the MoorDyn 2.7 library, docs/scene.md)
   then mu |F_n|; v_threshold is the velocity where that happens for a node of the
   first line's anchor segment resting on the seabed (FricDamp is kept as well).
 
-Seabed (DESIGN.md "Model only what a scene needs"): a SeafloorFile grid that is
+Seabed (model only what a scene needs, docs/seabeds.md): a SeafloorFile grid that is
 planar is replaced by its plane (``geometry.choose_seabed``, shared with the TOML reader),
 and the note says which model was chosen.
 """

@@ -1,4 +1,4 @@
-"""TOML scene reader: the schema of DESIGN.md "The TOML scene", documented key by key in docs/scene.md.
+"""TOML scene reader: documented key by key in docs/scene.md.
 
 Every value is type- and range-checked here, so a bad scene fails with one
 line naming the key path (``lines[0].segments[1].length``) and the reason;

@@ -1,4 +1,4 @@
-"""VTK time series through meshio: one .vtu per frame and a .pvd collection (DESIGN.md).
+"""VTK time series through meshio: one .vtu per frame and a .pvd collection (docs/outputs.md).
 
 meshio writes each frame under a temporary name, renamed into place when it is
 complete (``output.replace_into``); the .pvd is a few lines of XML written
