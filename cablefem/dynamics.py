@@ -41,7 +41,9 @@ class Integrator:
     """Common machinery: state, boundary rows, mass, counters and the policy's Python ops.
 
     system: a ``LineSystem``; X0, V0: (N, 3) initial state [m, m/s]; ``boundary(t)`` gives the
-    fairlead's position, velocity and acceleration (3,) at time t; dt [s]; tolerance: relative
+    fairlead's position, velocity and acceleration (3,) at time t, ``anchor(t)`` the anchor's (None:
+    fixed where the line has it); an end that is not prescribed (``Line.prescribed``) is an unknown
+    and its path is not used; dt [s]; tolerance: relative
     residual or relative increment, as in statics. ``compiled`` evaluates with ``cablefem.fused``
     (every load in the catalog has a compiled face); ``newton`` is "full", "modified" (LU factors
     kept across iterations and steps) or "auto": modified on the numpy path; with the compiled
@@ -78,11 +80,12 @@ class Integrator:
     STRETCH = 1e-3
 
     def __init__(self, system, X0, boundary, V0=None, t0=0.0, dt=0.01, tolerance=1e-8,
-                 max_iterations=12, lumped=False, min_dt=None, newton="auto", compiled=True):
+                 max_iterations=12, lumped=False, min_dt=None, newton="auto", compiled=True, anchor=None):
         self.system = system
         fem = system.fem
         self.fem = fem
         self.boundary = boundary
+        self.anchor_path = anchor
         self.t = float(t0)
         self.X = np.array(X0, dtype=float)
         self.V = np.zeros_like(self.X) if V0 is None else np.array(V0, dtype=float)
@@ -138,12 +141,34 @@ class Integrator:
 
     # ------------------------------------------------------------ helpers
     def set_boundary(self, X, V, A, t):
-        """Put the anchor and fairlead rows of X, V, A at their prescribed values at time t."""
+        """Put the prescribed anchor and fairlead rows of X, V, A at their values at time t."""
         fem = self.fem
-        X[fem.anchor_dof] = self.system.line.anchor
-        V[fem.anchor_dof] = 0.0
-        A[fem.anchor_dof] = 0.0
-        X[fem.fairlead_dof], V[fem.fairlead_dof], A[fem.fairlead_dof] = self.boundary(t)
+        if fem.prescribed[0]:
+            if self.anchor_path is None:
+                X[fem.anchor_dof] = self.system.line.anchor
+                V[fem.anchor_dof] = 0.0
+                A[fem.anchor_dof] = 0.0
+            else:
+                X[fem.anchor_dof], V[fem.anchor_dof], A[fem.anchor_dof] = self.anchor_path(t)
+        if fem.prescribed[1]:
+            X[fem.fairlead_dof], V[fem.fairlead_dof], A[fem.fairlead_dof] = self.boundary(t)
+
+    def ends_at(self, t):
+        """Positions (2, 3) of the anchor and the fairlead end where their paths have them at t."""
+        anchor = self.system.line.anchor if self.anchor_path is None else self.anchor_path(t)[0]
+        return np.array([anchor, self.boundary(t)[0]], dtype=float)
+
+    def end_positions(self, times):
+        """Positions (m, 2, 3) of the anchor and fairlead ends at ``times`` (m,)."""
+        times = np.asarray(times, dtype=float)
+        ends = np.empty((len(times), 2, 3))
+        ends[:, 1] = self.fairlead_positions(times)
+        if self.anchor_path is None:
+            ends[:, 0] = self.system.line.anchor
+        else:
+            positions = getattr(self.anchor_path, "positions", None)
+            ends[:, 0] = positions(times) if positions is not None else [self.anchor_path(t)[0] for t in times]
+        return ends
 
     def inertia(self, A):
         """Rows (N, 3) of M A."""
@@ -222,11 +247,14 @@ class Integrator:
         return factors.solve(-rows[self.fem.free_dofs].ravel()).reshape(-1, 3)
 
     def predict(self, h):
-        """Taylor predictor of the positions at t + h, the fairlead at ``self.target`` and the anchor
-        in place (``self.guess``)."""
+        """Taylor predictor of the positions at t + h with the prescribed ends at ``self.targets``
+        (``self.guess``)."""
+        fem = self.fem
         guess = self.X + h * self.V + 0.5 * h * h * self.A
-        guess[self.fem.fairlead_dof] = self.target
-        guess[self.fem.anchor_dof] = self.system.line.anchor
+        if fem.prescribed[1]:
+            guess[fem.fairlead_dof] = self.targets[1]
+        if fem.prescribed[0]:
+            guess[fem.anchor_dof] = self.targets[0]
         self.guess = guess
 
     # --------------------------------------------------------------- step

@@ -75,8 +75,11 @@ class LineFEM:
         self.segment = line.element_segments()  # (nel,)
         self.anchor_dof = 0
         self.fairlead_dof = self.n_vertices - 1
+        # the ends whose positions are prescribed (``Line.prescribed``); the others are unknowns
+        self.prescribed = tuple(line.prescribed)
+        self.fixed_dofs = [dof for dof, given in zip((self.anchor_dof, self.fairlead_dof), self.prescribed) if given]
         fixed = np.zeros(self.n_dofs, dtype=bool)
-        fixed[[self.anchor_dof, self.fairlead_dof]] = True
+        fixed[self.fixed_dofs] = True
         self.free_dofs = np.flatnonzero(~fixed)
         self.free_vector_dofs = (3 * self.free_dofs[:, None] + np.arange(3)).ravel()
 

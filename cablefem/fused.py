@@ -28,6 +28,8 @@ def pack_params(loads, nel):
     seen = set()
     for load in loads:
         spec = catalog.spec_of(load)
+        if spec.rule == "node":
+            continue
         if spec.name in seen:
             raise ValueError(f"two '{spec.name}' loads in one system: the compiled path holds one of each")
         seen.add(spec.name)
@@ -41,6 +43,28 @@ def pack_params(loads, nel):
         for name, value in values.items():
             part[name] = value
     return record
+
+
+def pack_nodes(loads):
+    """The node loads' vertices (k,) and parameter record (k,) (``pack_params`` for the loads of
+    rule "node"; at most one such load per line, all of its vertices)."""
+    nodes = [load for load in loads if catalog.spec_of(load).rule == "node"]
+    if len(nodes) > 1:
+        raise ValueError("two node loads in one system: the compiled path holds one")
+    if not nodes:
+        return np.zeros(0, dtype=np.int64), kernels.records(kernels.LAYOUT.node_params, 0)
+    load, spec = nodes[0], catalog.spec_of(nodes[0])
+    vertices = np.asarray(load.vertices, dtype=np.int64)
+    record = kernels.records(kernels.LAYOUT.node_params, len(vertices))
+    values = load.params()
+    expected = {field[0] for field in spec.params}
+    if set(values) != expected:
+        raise ValueError(f"load '{spec.name}': params() gives {sorted(values)}, its LoadSpec declares "
+                         f"{sorted(expected)}")
+    record[spec.name]["active"] = True
+    for name, value in values.items():
+        record[spec.name][name] = value
+    return vertices, record
 
 
 class FusedEvaluator:
@@ -59,14 +83,18 @@ class FusedEvaluator:
         position[np.array(order)] = np.arange(len(order))
         nloc = dofs.shape[1]
         self.kl = self.ku = 3 * nloc - 1
-        self.n = 3 * (fem.n_dofs - 2)
-        self.free_order = np.array(order[1:-1], dtype=np.int64)  # free scalar DOFs in band order
-        self.band_of_free = position[fem.free_dofs] - 1  # band position of fem.free_dofs
+        # the unknowns along the line: from the first vertex, or the second if the anchor is prescribed
+        lo, hi = (1 if fem.prescribed[0] else 0), fem.n_dofs - (2 if fem.prescribed[1] else 1)
+        self.n = 3 * (hi - lo + 1)
+        self.free_order = np.array(order[lo:hi + 1], dtype=np.int64)  # free scalar DOFs in band order
+        self.band_of_free = position[fem.free_dofs] - lo  # band position of fem.free_dofs
         self.full, self.reduced = fem.full, fem.reduced
+        vertices, node_params = pack_nodes(system.loads)
         self.mesh = kernels.Mesh(dofs, position, fem.full.phi, fem.full.dphi, fem.full.dx, fem.reduced.phi,
-                                 fem.reduced.dphi, fem.reduced.dx, np.asarray(mass, dtype=float), self.kl, self.ku)
+                                 fem.reduced.dphi, fem.reduced.dx, np.asarray(mass, dtype=float), self.kl, self.ku,
+                                 lo, hi, vertices)
         nel, nq, nr = fem.n_elements, fem.full.dx.shape[1], fem.reduced.dx.shape[1]
-        self.points = kernels.points(pack_params(system.loads, nel), system.history, nq, nr)
+        self.points = kernels.points(pack_params(system.loads, nel), system.history, nq, nr, node_params)
         # the branch state where the last Newton step started (``keep``), for the holds (``hold``)
         self.base_full = self.points.full_state.copy()
         self.base_reduced = self.points.reduced_state.copy()
@@ -105,6 +133,9 @@ class FusedEvaluator:
         band = np.zeros((2 * self.kl + self.ku + 1, self.n) if jacobian else (2, 2), order="F")
         kernels.assemble(self.mesh, self.bed(X), self.points, self.work, (X, V, A), (float(v_x), float(a_x)),
                          bool(jacobian), bool(stick), rows, band, self.elements)
+        if self.mesh.nodes.size:
+            kernels.assemble_nodes(self.mesh, self.points, self.work, (X, V, A), (float(v_x), float(a_x)),
+                                   bool(jacobian), rows, band)
         return rows, (band if jacobian else None)
 
     def keep(self):

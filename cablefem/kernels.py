@@ -34,7 +34,7 @@ from .loads import catalog
 warnings.filterwarnings("ignore", category=NumbaExperimentalFeatureWarning)
 
 LAYOUT = catalog.layout()
-FULL_KERNELS, REDUCED_KERNELS = LAYOUT.full_kernels, LAYOUT.reduced_kernels
+FULL_KERNELS, REDUCED_KERNELS, NODE_KERNELS = LAYOUT.full_kernels, LAYOUT.reduced_kernels, LAYOUT.node_kernels
 FULL_RULES, REDUCED_RULES = LAYOUT.full_rules, LAYOUT.reduced_rules
 
 #: what a point kernel sees of its point (set by ``assemble``); t, stretch and P at full points only
@@ -48,15 +48,18 @@ OUT = np.dtype([("f", "f8", (3,)), ("A", "f8", (3, 3)), ("B", "f8", (3, 3)), ("N
                 ("D", "f8", (3, 3))], align=True)
 
 #: a line's mesh as the loop reads it: element DOFs (nel, nloc), band positions (N,), basis values,
-#: derivatives and weights at the full and reduced points, mass per length (nel,), band widths
-Mesh = namedtuple("Mesh", "dofs position phi dphi dx rphi rdphi rdx mass kl ku")
+#: derivatives and weights at the full and reduced points, mass per length (nel,), band widths, the
+#: first and last band position of an unknown (1 and N - 2 between two prescribed ends, 0 and N - 1
+#: between two free ones), and the vertices of the node loads (k,)
+Mesh = namedtuple("Mesh", "dofs position phi dphi dx rphi rdphi rdx mass kl ku lo hi nodes")
 #: the seabed at the full points: a plane (nx, ny, nz, offset), or an empty plane and the
 #: projection's gap (nel, nq), normal, its gradient (nel, nq, 3) and the normal's (nel, nq, 3, 3)
 Bed = namedtuple("Bed", "plane gap normal grad_gap dnormal")
 #: the records of ``cablefem.loads.catalog``: parameters (nel,), and per full (nel, nq) and reduced
-#: (nel, nr) point the committed and trial history, the branch state and the holds
+#: (nel, nr) point the committed and trial history, the branch state and the holds; the node loads'
+#: parameters (k,)
 Points = namedtuple("Points", "params full_old full_new full_state full_hold "
-                              "reduced_old reduced_new reduced_state reduced_hold")
+                              "reduced_old reduced_new reduced_state reduced_hold nodes")
 #: scratch: a context and an output record, the loads' matrices (k, 3, 3) and vectors (k, 3), an
 #: element's rows (nloc, 3) and matrix (nloc, 3, nloc, 3)
 Work = namedtuple("Work", "ctx out M u Re Ke")
@@ -67,14 +70,15 @@ def records(dtype, shape):
     return np.zeros(shape, dtype=dtype)
 
 
-def points(params, history, nq, nr):
+def points(params, history, nq, nr, nodes):
     """Per-point records (``Points``) for ``params`` (nel,) with nq full and nr reduced points: the
     history of a ``LineSystem`` (``system.history``, shared: the compiled and the numpy path commit
-    the same records), fresh branch state and holds."""
+    the same records), fresh branch state and holds; ``nodes``: the node loads' parameters (k,)."""
     L, nel = LAYOUT, params.shape[0]
     (full_old, full_new), (reduced_old, reduced_new) = history["full"], history["reduced"]
     return Points(params, full_old, full_new, records(L.full_state, (nel, nq)), records(L.full_hold, (nel, nq)),
-                  reduced_old, reduced_new, records(L.reduced_state, (nel, nr)), records(L.reduced_hold, (nel, nr)))
+                  reduced_old, reduced_new, records(L.reduced_state, (nel, nr)), records(L.reduced_hold, (nel, nr)),
+                  nodes)
 
 
 def work(nloc):
@@ -102,6 +106,42 @@ def reduced_point(ctx, p, old, new, state, hold, out, M, u):
         out.D[:, :] = 0.0
     for kernel in literal_unroll(REDUCED_KERNELS):
         kernel(ctx, p, old, new, state, hold, out, M, u)
+
+
+@njit(cache=True, _nrt=False)
+def node_point(ctx, p, out, M, u):
+    """Every node load of the catalog, in order, into ``out`` (f, A zeroed first)."""
+    out.f[:] = 0.0
+    if ctx.jac:
+        out.A[:, :] = 0.0
+    for kernel in literal_unroll(NODE_KERNELS):
+        kernel(ctx, p, p, p, p, p, out, M, u)
+
+
+@njit(cache=True, _nrt=False)
+def assemble_nodes(mesh, pts, work, state, factors, jac, rows, band):
+    """The node loads at their vertices (``mesh.nodes``): -f added to the rows (N, 3) and, with
+    ``jac``, the 3 x 3 block A to the band's diagonal (unknown vertices only)."""
+    X, V, Acc = state
+    ctx, out, M, u = work.ctx[0], work.out[0], work.M, work.u
+    ctx.v_x, ctx.a_x = factors
+    ctx.jac = jac
+    kl, ku = mesh.kl, mesh.ku
+    for k in range(mesh.nodes.shape[0]):
+        i = mesh.nodes[k]
+        for a in range(3):
+            ctx.r[a], ctx.v[a], ctx.a[a] = X[i, a], V[i, a], Acc[i, a]
+        node_point(ctx, pts.nodes[k], out, M, u)
+        for a in range(3):
+            rows[i, a] -= out.f[a]
+        pi = mesh.position[i]
+        if not jac or pi < mesh.lo or pi > mesh.hi:
+            continue
+        for a in range(3):
+            for b in range(3):
+                row = 3 * (pi - mesh.lo) + a
+                col = 3 * (pi - mesh.lo) + b
+                band[kl + ku + row - col, col] += out.A[a, b]
 
 
 @njit(cache=True, _nrt=False)
@@ -167,7 +207,6 @@ def assemble(mesh, bed, pts, work, state, factors, jac, held, rows, band, elemen
     ctx.v_x, ctx.a_x = factors
     ctx.jac, ctx.held = jac, held
     nq, nr = mesh.dx.shape[1], mesh.rdx.shape[1]
-    last = mesh.position.shape[0] - 1  # position: a permutation
     for e in elements:
         Re[:] = 0.0
         Ke[:] = 0.0
@@ -183,7 +222,7 @@ def assemble(mesh, bed, pts, work, state, factors, jac, held, rows, band, elemen
             reduced_point(ctx, p, pts.reduced_old[e, g], pts.reduced_new[e, g], pts.reduced_state[e, g],
                           pts.reduced_hold[e, g], out, M, u)
             _add_reduced(Re, Ke, mesh, out, e, g, jac)
-        _scatter(Re, Ke, mesh, e, last, jac, rows, band)
+        _scatter(Re, Ke, mesh, e, jac, rows, band)
 
 
 @njit(cache=True, _nrt=False)
@@ -236,25 +275,25 @@ def _add_reduced(Re, Ke, mesh, out, e, g, jac):
 
 
 @njit(cache=True, _nrt=False)
-def _scatter(Re, Ke, mesh, e, last, jac, rows, band):
-    """An element's rows into the residual and its matrix into the band (fixed ends left out)."""
+def _scatter(Re, Ke, mesh, e, jac, rows, band):
+    """An element's rows into the residual and its matrix into the band (prescribed ends left out)."""
     nloc = mesh.dofs.shape[1]
-    kl, ku = mesh.kl, mesh.ku
+    kl, ku, lo, hi = mesh.kl, mesh.ku, mesh.lo, mesh.hi
     for l in range(nloc):
         i = mesh.dofs[e, l]
         for a in range(3):
             rows[i, a] += Re[l, a]
         pi = mesh.position[i]
-        if not jac or pi == 0 or pi == last:
+        if not jac or pi < lo or pi > hi:
             continue
         for mm in range(nloc):
             pj = mesh.position[mesh.dofs[e, mm]]
-            if pj == 0 or pj == last:
+            if pj < lo or pj > hi:
                 continue
             for a in range(3):
                 for b in range(3):
-                    row = 3 * (pi - 1) + a
-                    col = 3 * (pj - 1) + b
+                    row = 3 * (pi - lo) + a
+                    col = 3 * (pj - lo) + b
                     band[kl + ku + row - col, col] += Ke[l, a, mm, b]
 
 

@@ -6,7 +6,7 @@ FEM mesh has nodes at the segment boundaries (desire2023 Sec. 2.1).
 """
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -97,10 +97,37 @@ class Segment:
 
 
 @dataclass(frozen=True)
+class Joint:
+    """A point of a line at a vertex (a segment boundary or an end): a clump weight, a buoy, a
+    connector. ``mass`` [kg] in air, ``volume`` [m^3] displaced (a sphere, for the part of it below
+    the water surface), ``CdA`` [m^2] drag coefficient times area and ``Ca`` the added-mass
+    coefficient of that volume, both isotropic, as MoorDyn's points (``cablefem.loads.points``)."""
+
+    name: str
+    mass: float = 0.0
+    volume: float = 0.0
+    CdA: float = 0.0
+    Ca: float = 0.0
+
+    def __post_init__(self):
+        for key in ("mass", "volume", "CdA", "Ca"):
+            object.__setattr__(self, key, _positive(getattr(self, key), key, allow_zero=True))
+
+    @property
+    def loaded(self):
+        """Whether the point adds any force (a massless, volumeless joint adds none)."""
+        return bool(self.mass or self.volume or self.CdA)
+
+
+@dataclass(frozen=True)
 class Line:
     """A line from ``anchor`` (s = 0) to ``fairlead`` (s = L), segments listed anchor first.
 
-    ``order`` is the polynomial order of the finite elements (1, 2, 3, ...).
+    ``order`` is the polynomial order of the finite elements (1, 2, 3, ...). ``joints``: points
+    at segment boundaries, ((boundary, Joint), ...) with boundary 0 the anchor end and
+    len(segments) the fairlead end (a line of a network joined through points, ``cablefem.network``).
+    ``prescribed``: whether the anchor and the fairlead end have prescribed positions (the default)
+    or are unknowns (a free end, or an end the network solves for).
     """
 
     name: str
@@ -108,6 +135,8 @@ class Line:
     fairlead: np.ndarray
     segments: tuple
     order: int = 1
+    joints: tuple = ()
+    prescribed: tuple = (True, True)
 
     def __post_init__(self):
         object.__setattr__(self, "anchor", _point(self.anchor, "anchor"))
@@ -118,6 +147,16 @@ class Line:
         object.__setattr__(self, "segments", segments)
         if isinstance(self.order, bool) or not isinstance(self.order, (int, np.integer)) or self.order < 1:
             raise InputError(f"must be a whole number >= 1, got {self.order!r}", key="order")
+        joints = tuple((int(k), joint) for k, joint in self.joints)
+        if any(not 0 <= k <= len(segments) for k, _ in joints) or len({k for k, _ in joints}) != len(joints):
+            raise InputError("joints must sit at distinct segment boundaries", key="joints")
+        object.__setattr__(self, "joints", tuple(sorted(joints, key=lambda item: item[0])))
+        object.__setattr__(self, "prescribed", tuple(bool(p) for p in self.prescribed))
+
+    def joint_vertices(self):
+        """Vertex index (k,) of each joint, in ``joints`` order."""
+        first = np.concatenate([[0], np.cumsum([seg.elements for seg in self.segments])])
+        return np.array([first[k] for k, _ in self.joints], dtype=np.int64)
 
     @property
     def unstretched_length(self):
@@ -157,15 +196,20 @@ class Line:
         right = max(1, seg.elements - left)
         pieces = (Segment(seg.type, s - a, left), Segment(seg.type, b - s, right))
         segments = self.segments[:i] + pieces + self.segments[i + 1:]
-        return Line(self.name, self.anchor, self.fairlead, segments, self.order)
+        joints = tuple((k + 1 if k > i else k, joint) for k, joint in self.joints)
+        return replace(self, segments=segments, joints=joints)
 
     def with_order(self, order):
         """The same line with another element order."""
-        return Line(self.name, self.anchor, self.fairlead, self.segments, order)
+        return replace(self, order=order)
+
+    def with_ends(self, anchor, fairlead):
+        """The same line between other end points."""
+        return replace(self, anchor=anchor, fairlead=fairlead)
 
     def with_elements(self, elements):
         """The same line with ``elements`` elements spread over the segments by length."""
         total = self.unstretched_length
         counts = [max(1, round(elements * seg.length / total)) for seg in self.segments]
         segments = tuple(Segment(seg.type, seg.length, n) for seg, n in zip(self.segments, counts))
-        return Line(self.name, self.anchor, self.fairlead, segments, self.order)
+        return replace(self, segments=segments)

@@ -54,13 +54,14 @@ FACTORS = np.dtype([("c0", "f8"), ("auto_left", "f8")])
 #: Newton's step and its own step when corrected (n,); the band and its LU (flat, LAPACK's
 #: column-major layout), pivots and multipliers; the base's branch state; the byte views (dst, src)
 #: that keep the branch state as the base's and commit the trial history; the clock (CLOCK) and the
-#: factors' key (FACTORS); counters (policy.COUNTERS); the fairlead at the end of each step
-#: (m, 3) and at its splits (m, FRACTIONS - 1, 3); the anchor (3,); the fairlead of the attempt (3,)
+#: factors' key (FACTORS); counters (policy.COUNTERS); the anchor and the fairlead at the end of
+#: each step (m, 2, 3) and at its splits (m, FRACTIONS - 1, 2, 3), and at the end of the attempt
+#: (2, 3) (an end that is not prescribed, ``Line.prescribed``, is an unknown like the others)
 Problem = namedtuple("Problem", "settings mesh bed pts work projector free_nodes free_order all_elements "
                                 "end_elements anchor_node fairlead_node scale "
                                 "X V A Xp Vp prediction rows X1 V1 A1 guess x_hist v_hist base "
                                 "rhs step original band lu ipiv multipliers base_full base_reduced keeps commits "
-                                "clock factors counters fairlead fractions anchor target")
+                                "clock factors counters ends fractions target")
 
 
 @njit(cache=True, _nrt=False)
@@ -168,6 +169,9 @@ def _assemble(prob, tangent, held, elements):
         band2.T[:] = 0.0  # the contiguous (nb, ld) view: a memset, not a strided walk
     kernels.assemble(prob.mesh, prob.bed, prob.pts, prob.work, (prob.X1, prob.V1, prob.A1), (c0, c0 * c0),
                      tangent, held, prob.rows, band2, elements)
+    if prob.mesh.nodes.shape[0]:
+        kernels.assemble_nodes(prob.mesh, prob.pts, prob.work, (prob.X1, prob.V1, prob.A1), (c0, c0 * c0),
+                               tangent, prob.rows, band2)
     prob.counters[policy.NFEV] += 1
     return 0
 
@@ -267,7 +271,7 @@ def restore_original(prob):
 def begin(prob, h):
     """BDF2's coefficients for a step of h from the current state (backward Euler to start), its
     histories x_hist = c1 X + c2 Xp, v_hist = c1 V + c2 Vp, and the Taylor predictor X + h V + h^2/2 A
-    with the fairlead (``prob.target``, set by ``fairlead``) and the anchor in place."""
+    with the prescribed ends in place (``prob.target``, set by ``place_ends``)."""
     X, V, A, Xp, Vp, guess = prob.X, prob.V, prob.A, prob.Xp, prob.Vp, prob.guess
     clock = prob.clock[0]
     h_before = clock.h_before
@@ -284,8 +288,10 @@ def begin(prob, h):
             prob.v_hist[i, a] = c1 * V[i, a] + c2 * (V[i, a] if start else Vp[i, a])
             guess[i, a] = X[i, a] + h * V[i, a] + 0.5 * h * h * A[i, a]
     for a in range(3):
-        guess[prob.fairlead_node, a] = prob.target[a]
-        guess[prob.anchor_node, a] = prob.anchor[a]
+        if prob.mesh.hi < X.shape[0] - 1:  # the fairlead end is prescribed
+            guess[prob.fairlead_node, a] = prob.target[1, a]
+        if prob.mesh.lo == 1:  # the anchor end
+            guess[prob.anchor_node, a] = prob.target[0, a]
 
 
 @njit(cache=True, inline="always", _nrt=False)
@@ -345,11 +351,12 @@ def record_stop(prob, h):
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def fairlead(prob, k, j, h):
-    """The fairlead where step k's attempt ending at its j-th split (of FRACTIONS) puts it."""
-    position = prob.fairlead[k] if j == FRACTIONS else prob.fractions[k, j - 1]
-    for a in range(3):
-        prob.target[a] = position[a]
+def place_ends(prob, k, j, h):
+    """The ends where step k's attempt ending at its j-th split (of FRACTIONS) puts them."""
+    position = prob.ends[k] if j == FRACTIONS else prob.fractions[k, j - 1]
+    for e in range(2):
+        for a in range(3):
+            prob.target[e, a] = position[e, a]
     return True
 
 

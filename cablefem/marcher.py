@@ -28,7 +28,6 @@ class Marcher:
         self.end_elements = ends.astype(np.int64)
         self.points = nel * nq
         self.rule = fem.full  # positions at its quadrature points: the walk's start
-        self.anchor = np.asarray(integ.system.line.anchor, dtype=float)
         self.settings = integ.make_settings(FRACTIONS)  # read at construction
         n, N = ev.n, fem.n_dofs
         size = n * (2 * ev.kl + ev.ku + 1)
@@ -57,13 +56,13 @@ class Marcher:
             return cls(integ, TRIANGULATED)
         return None
 
-    def fairleads(self, integ, times):
-        """The fairlead at ``times`` (m,) and where the loop may split each step (halved on failure),
-        (m, 3) and (m, FRACTIONS - 1, 3)."""
+    def ends(self, integ, times):
+        """The anchor and fairlead at ``times`` (m,) and where the loop may split each step (halved
+        on failure), (m, 2, 3) and (m, FRACTIONS - 1, 2, 3)."""
         starts = np.append(integ.t, times[:-1])
         split = np.arange(1, FRACTIONS) / FRACTIONS
-        fractions = integ.fairlead_positions((starts[:, None] + split * (times - starts)[:, None]).ravel())
-        return integ.fairlead_positions(times), fractions.reshape(len(times), FRACTIONS - 1, 3)
+        fractions = integ.end_positions((starts[:, None] + split * (times - starts)[:, None]).ravel())
+        return integ.end_positions(times), fractions.reshape(len(times), FRACTIONS - 1, 2, 3)
 
     def projector(self, X):
         """The seabed's ``Projector`` for state X (N, 3): its arrays, the walk's warm start from the
@@ -79,9 +78,9 @@ class Marcher:
         return Projector(self.kind, *grid, *walker, np.zeros(n, dtype=np.int64), np.zeros((3, n)), np.zeros((3, n)),
                          np.zeros((walk.OUTPUTS, n)))
 
-    def problem(self, integ, fairlead, fractions):
-        """The ``Problem`` of ``integ``'s current state, the fairlead at the ends of the steps to come
-        (m, 3) and at their splits (m, FRACTIONS - 1, 3)."""
+    def problem(self, integ, ends, fractions):
+        """The ``Problem`` of ``integ``'s current state, the anchor and fairlead at the ends of the
+        steps to come (m, 2, 3) and at their splits (m, FRACTIONS - 1, 2, 3)."""
         h_before, Xp, Vp = (0.0, integ.X, integ.V) if integ.previous is None else integ.previous
         state = tuple(np.array(x, dtype=float) for x in (integ.X, integ.V, integ.A, Xp, Vp, integ.X))
         clock = np.zeros(1, CLOCK)
@@ -93,8 +92,8 @@ class Marcher:
                        int(fem.anchor_dof), int(fem.fairlead_dof), integ.scale, *state, np.zeros_like(integ.X),
                        *self.rows, *self.vectors, *self.bands, ev.base_full, ev.base_reduced, self.keeps,
                        self.commits, clock, self.factors, np.zeros(len(policy.COUNTERS), dtype=np.int64),
-                       np.ascontiguousarray(fairlead, dtype=float), np.ascontiguousarray(fractions, dtype=float),
-                       self.anchor, np.zeros(3))
+                       np.ascontiguousarray(ends, dtype=float), np.ascontiguousarray(fractions, dtype=float),
+                       np.zeros((2, 3)))
 
     def finish(self, integ, prob, count_steps=True):
         """Hand the run's results back to ``integ``: counters, "auto"'s state, the seabed walk's
@@ -111,22 +110,22 @@ class Marcher:
             integ.previous = (float(clock["h_before"]), prob.Xp, prob.Vp)
             integ.t, integ.last_h = float(clock["t"]), float(clock["last_h"])
 
-    def run(self, integ, times, fairlead, fractions, forces):
-        """Steps of ``integ`` to ``times`` (m,) with the fairlead at ``fairlead`` (m, 3) and at the
+    def run(self, integ, times, ends, fractions, forces):
+        """Steps of ``integ`` to ``times`` (m,) with the ends at ``ends`` (m, 2, 3) and at the
         splits ``fractions``, as ``policy.steps`` takes them, the line's forces into ``forces``
         (m, 2, 3). Returns (status, k, the size of the attempt that stopped the loop)."""
-        prob = self.problem(integ, fairlead, fractions)
+        prob = self.problem(integ, ends, fractions)
         status, k = STEPS(prob, np.asarray(times, dtype=float), forces)
         self.finish(integ, prob)
         return status, k, float(prob.clock[0]["stopped"])
 
     def attempt(self, integ, h):
-        """One attempt of size h of ``integ`` (``policy.attempt``), the fairlead at t + h; its
+        """One attempt of size h of ``integ`` (``policy.attempt``), the ends at t + h; its
         outcome (policy.CONVERGED, DIVERGED or LOST). The attempt's arithmetic is that of a run of
         steps to the time t + h: its size is (t + h) - t."""
         t1 = integ.t + h
-        prob = self.problem(integ, integ.boundary(t1)[0][None], np.zeros((0, FRACTIONS - 1, 3)))
-        prob.target[:] = prob.fairlead[0]
+        prob = self.problem(integ, integ.ends_at(t1)[None], np.zeros((0, FRACTIONS - 1, 2, 3)))
+        prob.target[:] = prob.ends[0]
         outcome = attempt(prob, t1 - integ.t)
         self.finish(integ, prob)
         return outcome

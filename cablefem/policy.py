@@ -32,9 +32,9 @@ only ``prob.settings`` (a ``Settings``) and calls ops for everything else:
     count(prob, counter, amount), time(prob), last_step(prob), record_residual(prob, norm)
     attempt(prob, h) -> int                ``attempt`` below, bound to the same ops (the Python ops
                                            go through the integrator, where it can be watched)
-    fairlead(prob, k, j, h) -> bool        the fairlead at the end of the attempt of h that ends at
-                                           the j-th of ``settings.parts`` parts of step k; False if
-                                           this path cannot place it there
+    place_ends(prob, k, j, h) -> bool      the prescribed ends at the end of the attempt of h that
+                                           ends at the j-th of ``settings.parts`` parts of step k;
+                                           False if this path cannot place them there
     record_stop(prob, h), reactions(prob, forces, k)
 """
 
@@ -212,7 +212,7 @@ def advance(prob, k, target, first):
             if abs(share - j) > 1e-6 or j < 1:
                 ops.record_stop(prob, h)
                 return SPLIT
-        if not ops.fairlead(prob, k, j, h):
+        if not ops.place_ends(prob, k, j, h):
             ops.record_stop(prob, h)
             return SPLIT
         outcome = ops.attempt(prob, h)

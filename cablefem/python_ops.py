@@ -121,9 +121,9 @@ def record_stop(prob, h):
     prob.stopped = h
 
 
-def fairlead(prob, k, j, h):
-    """The fairlead where the boundary motion has it at the end of an attempt of h [s]."""
-    prob.target = prob.boundary(prob.t + h)[0]
+def place_ends(prob, k, j, h):
+    """The prescribed ends where their paths have them at the end of an attempt of h [s]."""
+    prob.targets = prob.ends_at(prob.t + h)
     return True
 
 

@@ -22,7 +22,6 @@ from .io.checks import check_names, check_run
 from .io.output import (RowsFile, deferred_signals, failure as write_failure, inside, prepare_folder,
                         remove_partials, write_atomic)
 from .io.vtk import TimeSeriesWriter, polyline_mesh
-from .line import Line
 from .motion import fairlead_motion
 from .results import LineSampler, line_fields
 from .statics import solve_static
@@ -65,7 +64,7 @@ def start_states(scene, t0=0.0, systems=None):
     states, iterations = [], 0
     for k, line in enumerate(scene.lines):
         d0 = fairlead_motion(scene.motion, t0)[0]
-        moved = Line(line.name, line.anchor, line.fairlead + d0, line.segments, line.order)
+        moved = line.with_ends(line.anchor, line.fairlead + d0)
         fem = None if systems is None else systems[k].fem
         static = build_system(scene, moved, dynamic=False, fem=fem)
         result = solve_static(static, tolerance=scene.solver.tolerance, max_iterations=scene.solver.max_iterations)

@@ -79,16 +79,16 @@ class BDF2(Integrator):
 
     def march(self, times):
         """Steps to ``times`` in compiled runs (``cablefem.march``); where the compiled loop stops (an
-        attempt it cannot place the fairlead for, a point the seabed walk lost) that step goes on
+        attempt it cannot place the ends for, a point the seabed walk lost) that step goes on
         through the Python ops. Returns the forces (m, 2, 3) on fairlead and anchor."""
         if self.marcher is None:
             return super().march(times)
         times = np.asarray(times, dtype=float)
-        fairlead, fractions = self.marcher.fairleads(self, times)
+        ends, fractions = self.marcher.ends(self, times)
         forces = np.empty((len(times), 2, 3))
         k = 0
         while k < len(times):
-            status, done, stopped = self.marcher.run(self, times[k:], fairlead[k:], fractions[k:], forces[k:])
+            status, done, stopped = self.marcher.run(self, times[k:], ends[k:], fractions[k:], forces[k:])
             k += done
             if status == policy.DONE:
                 break

@@ -16,6 +16,7 @@ contact; dynamics adds friction, drag and added mass).
 from dataclasses import dataclass, field, replace
 
 import numpy as np
+import scipy.sparse as sp
 
 from . import forms
 from .fem import LineFEM
@@ -37,8 +38,8 @@ def element_properties(line):
 class Setting:
     """What a load's builder (``LoadSpec.build``) sees of a scene for one line: its per-element
     properties, the seabed, the scene's contact, environment and friction (None in statics),
-    whether the run is dynamic, the scene's load tables by section, and (``with_keys``) the table
-    of the load's own section."""
+    whether the run is dynamic, the scene's load tables by section, (``with_keys``) the table
+    of the load's own section, and the ``Line`` itself (its joints, its ends)."""
 
     props: dict
     seabed: object
@@ -48,6 +49,7 @@ class Setting:
     dynamic: bool = False
     sections: dict = field(default_factory=dict)
     keys: dict | None = None
+    line: object = None
 
     def with_keys(self, keys):
         return replace(self, keys=keys)
@@ -70,7 +72,8 @@ class LineSystem:
         self.fem = fem or LineFEM(line, quadrature_points)
         self.props = element_properties(line)
         self.setting = Setting(self.props, seabed, contact, environment, friction,
-                               friction is not None if dynamic is None else dynamic, dict(sections or {}))
+                               friction is not None if dynamic is None else dynamic, dict(sections or {}),
+                               line=line)
         self.loads = catalog.build_loads(self.setting) + list(extra_loads)
         self.history = _history_records(self.fem)  # {"full": (old, new), "reduced": (old, new)}
         self.reset_history(None)
@@ -137,6 +140,10 @@ class LineSystem:
             states.append(State(r, dr, v, dv, a, t, old=old, new=new))
         full, reduced = states
         full.reduced = reduced
+        vertices = self.line.joint_vertices()
+        if len(vertices):  # the joints' own kinematics (3, k), for the node loads
+            at = lambda Y: None if Y is None else np.ascontiguousarray(Y[vertices].T)  # noqa: E731
+            full.nodes = State(at(X), None, at(V), None, at(A), t)
         return full
 
     def evaluate(self, state, jacobian=True, velocity_factor=0.0, acceleration_factor=0.0):
@@ -144,8 +151,15 @@ class LineSystem:
         (A, B, C, D) of dG/dX at quadrature points (see ``cablefem.forms``), per rule, where
         dV/dX = velocity_factor and dA/dX = acceleration_factor (both 0 in statics)."""
         sums = {}  # rule name -> [force, flux, A, B, C, D]
+        residual = np.zeros((self.fem.n_dofs, 3))
         for load in self.loads:
             rule = getattr(load, "rule", "full")
+            if rule == "node":  # a concentrated force: its rows and 3 x 3 blocks at its vertices
+                node = self._node_terms(load, state.nodes, jacobian, velocity_factor, acceleration_factor)
+                residual[load.vertices] -= node[0]
+                if node[1] is not None:
+                    sums.setdefault("node", [None] * 6)[2] = node[1]
+                continue
             terms = load.evaluate(state.reduced if rule == "reduced" else state, jacobian)
             acc = sums.setdefault(rule, [None] * 6)
             acc[0], acc[1] = add(acc[0], terms.force), add(acc[1], terms.flux)
@@ -159,8 +173,9 @@ class LineSystem:
                 block = _combine(base, rate, velocity_factor, accel, acceleration_factor)
                 if block is not None:
                     acc[2 + i] = add(acc[2 + i], sign * block)
-        residual = np.zeros((self.fem.n_dofs, 3))
         for rule, acc in sums.items():
+            if rule == "node":
+                continue
             if self.assembly == "forms":
                 residual += self._forms_vector(acc[0], acc[1], rule)
             else:
@@ -168,11 +183,40 @@ class LineSystem:
         blocks = {rule: tuple(acc[2:]) for rule, acc in sums.items()} if jacobian else None
         return residual, blocks
 
+    @staticmethod
+    def _node_terms(load, nodes, jacobian, velocity_factor, acceleration_factor):
+        """A node load's forces (k, 3) at its vertices and, with ``jacobian``, its blocks
+        A = -(f_r + v_x f_v + a_x f_a) (3, 3, k)."""
+        terms = load.evaluate(nodes, jacobian)
+        if not jacobian:
+            return terms.force.T, None
+        block = _combine(terms.force_r, terms.force_v, velocity_factor, terms.force_a, acceleration_factor)
+        return terms.force.T, (None if block is None else -block)
+
+    def _node_matrix(self, block, free_only):
+        """The node loads' 3 x 3 blocks (3, 3, k) on the diagonal of the tangent (CSR)."""
+        load = next(load for load in self.loads if getattr(load, "rule", "full") == "node")
+        vertices = load.vertices
+        rows = (3 * vertices[None, None, :] + np.arange(3)[:, None, None]) * np.ones((1, 3, 1), dtype=np.int64)
+        cols = (3 * vertices[None, None, :] + np.arange(3)[None, :, None]) * np.ones((3, 1, 1), dtype=np.int64)
+        size = 3 * self.fem.n_dofs
+        K = sp.csr_matrix((block.ravel(), (rows.ravel(), cols.ravel())), shape=(size, size))
+        if free_only:
+            free = self.fem.free_vector_dofs
+            K = K[free][:, free]
+        return K
+
     def _rule(self, name):
         return self.fem.reduced if name == "reduced" else self.fem.full
 
     def matrix(self, blocks, free_only=True):
         """Sparse tangent (CSR) from the blocks returned by ``evaluate``, free DOFs by default."""
+        if "node" in blocks:
+            node = blocks["node"][0]
+            rest = {rule: parts for rule, parts in blocks.items() if rule != "node"}
+            size = len(self.fem.free_vector_dofs) if free_only else 3 * self.fem.n_dofs
+            K = self.matrix(rest, free_only) if rest else sp.csr_matrix((size, size))
+            return K if node is None else (K + self._node_matrix(node, free_only)).tocsr()
         if self.assembly == "forms":
             K = 0
             for rule, parts in blocks.items():
@@ -205,6 +249,9 @@ class LineSystem:
         total += np.sum(self.weight.energy(state) * self.fem.full.dx)
         gap = self.seabed.gap_only(state.r.reshape(3, -1).T).reshape(self.fem.full.s.shape)
         total += np.sum(0.5 * self.contact.stiffness * np.minimum(gap, 0.0) ** 2 * self.fem.full.dx)
+        for load in self.loads:
+            if getattr(load, "rule", "full") == "node":
+                total += load.energy(X[load.vertices, 2])
         return float(total)
 
     def residual(self, X, V=None, A=None, t=0.0):

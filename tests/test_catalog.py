@@ -2,13 +2,18 @@
 (residual and tangent to round-off) and the numpy face's tangent equals finite differences; the
 records are laid out by name, and a load the catalog does not know is refused loudly."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
 from cablefem.fused import FusedEvaluator, pack_params
 from cablefem.geometry import Plane
 from cablefem.loads import catalog
+from cablefem.line import Joint, Segment
 from cablefem.loads.friction import IsotropicFriction
+from cablefem.scene import Contact
+from cablefem.system import LineSystem
 
 from test_loads import assert_tangent_matches_finite_differences, line_state, system_with_all_loads
 
@@ -18,8 +23,18 @@ LAW = IsotropicFriction(0.3, 1.2, 0.05)
 
 
 def one_load_system(name, order):
-    """The soft rope of test_loads with drag, added mass, contact and friction, keeping one load."""
+    """The soft rope of test_loads with drag, added mass, contact and friction, keeping one load;
+    for the point loads, the rope in two segments with a clump weight at their joint and a buoy at
+    its free fairlead end, half out of the water."""
     system = system_with_all_loads(SEABED, LAW, order)
+    if name == "points":
+        line = system.line
+        seg = line.segments[0]
+        half = Segment(seg.type, seg.length / 2, seg.elements // 2)
+        joints = ((1, Joint("clump", mass=2e3, volume=0.3, CdA=1.5, Ca=1.0)),
+                  (2, Joint("buoy", mass=100.0, volume=2.0, CdA=2.0, Ca=0.5)))
+        line = replace(line, segments=(half, half), joints=joints, prescribed=(True, False))
+        system = LineSystem(line, SEABED, Contact(stiffness=0.0), system.environment)
     loads = [load for load in system.loads if catalog.spec_of(load).name == name]
     system.loads = loads[-1:]  # contact: the test's own (the catalog's has no stiffness here)
     return system
@@ -59,7 +74,8 @@ def test_numpy_face_tangent_matches_finite_differences(name, order, rng):
 def test_every_load_has_its_parameters_by_name_in_the_element_record():
     layout = catalog.layout()
     for spec in catalog.CATALOG:
-        fields = layout.params[spec.name].names
+        record = layout.node_params if spec.rule == "node" else layout.params
+        fields = record[spec.name].names
         assert fields == ("active",) + tuple(entry[0] for entry in spec.params)
         assert spec.reference.name == spec.name  # the numpy face names its catalog entry
 

@@ -18,7 +18,8 @@ class State:
 
     r: position, dr: dr/ds; v, dv: velocity and its s-derivative (None in
     statics); a: acceleration (None unless an integrator supplies it); t: time [s].
-    A load evaluated at the reduced quadrature (``rule = "reduced"``) gets ``reduced``.
+    A load evaluated at the reduced quadrature (``rule = "reduced"``) gets ``reduced``, a load at
+    vertices (``rule = "node"``) ``nodes``: the same kinematics (3, k) at the line's joints.
     old, new: the history of the points (record arrays (nel, nq) of the catalog's history
     dtype, ``cablefem.loads.catalog``): a load with history reads its committed values from
     ``old[name]`` and writes its trial values to ``new[name]``.
@@ -31,6 +32,7 @@ class State:
     a: np.ndarray | None = None
     t: float = 0.0
     reduced: "State | None" = None  # the same kinematics at the reduced quadrature points
+    nodes: "State | None" = None  # at the vertices of the line's joints (3, k)
     old: np.ndarray | None = None
     new: np.ndarray | None = None
 
@@ -95,8 +97,9 @@ class LoadSpec:
     """How a load presents itself to the compiled path.
 
     name: its key in every record (``p.<name>.<field>``); rule: "full" or "reduced" (the
-    quadrature its points use, ``cablefem.fem.LineFEM``); params: numpy dtype fields of its
-    per-element parameters (an ``active`` flag is added); kernel: the compiled point function
+    quadrature its points use, ``cablefem.fem.LineFEM``) or "node" (a concentrated force at
+    vertices, parameters per vertex: ``cablefem.loads.points``); params: numpy dtype fields of its
+    per-element (per-vertex) parameters (an ``active`` flag is added); kernel: the compiled point function
     ``kernel(ctx, p, old, new, state, hold, out, M, u)`` that adds the load at one point (see
     ``cablefem.kernels``); state / hold / history: dtype fields per point (written each
     evaluation / read / read from ``old`` and written to ``new``, committed on accepted steps);

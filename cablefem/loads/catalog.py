@@ -19,12 +19,15 @@ import numpy as np
 
 #: the placeholder field of a record no load writes (numpy records need one field at least)
 EMPTY = (("unused", "?"),)
+#: where a load is evaluated: the full or the reduced quadrature points of each element, or
+#: vertices of the line (a concentrated force: ``cablefem.loads.points``)
+RULES = ("full", "reduced", "node")
 
 
 def _default():
-    from . import added_mass, contact, drag, gravity, tension
+    from . import added_mass, contact, drag, gravity, points, tension
 
-    return [tension.SPEC, gravity.SPEC, contact.SPEC, drag.SPEC, added_mass.SPEC]
+    return [tension.SPEC, gravity.SPEC, contact.SPEC, drag.SPEC, added_mass.SPEC, points.SPEC]
 
 
 CATALOG = _default()
@@ -90,7 +93,16 @@ class Layout:
 
     def __init__(self, catalog):
         self.specs = tuple(catalog)
-        self.params = _record((s.name, (("active", "?"),) + tuple(s.params)) for s in self.specs)
+        for s in self.specs:
+            if s.rule not in RULES:
+                raise ValueError(f"load '{s.name}': rule must be one of {', '.join(RULES)}, got {s.rule!r}")
+            if s.rule == "node" and (s.state or s.hold or s.history):
+                raise ValueError(f"load '{s.name}': a node load has parameters only (no branch state, "
+                                 "holds or history yet)")
+        self.params = _record((s.name, (("active", "?"),) + tuple(s.params)) for s in self.specs if s.rule != "node")
+        self.node = tuple(s for s in self.specs if s.rule == "node")
+        self.node_params = _record((s.name, (("active", "?"),) + tuple(s.params)) for s in self.node)
+        self.node_kernels = tuple(s.kernel for s in self.node)
         self.full = tuple(s for s in self.specs if s.rule == "full")
         self.reduced = tuple(s for s in self.specs if s.rule == "reduced")
         for rule, specs in (("full", self.full), ("reduced", self.reduced)):

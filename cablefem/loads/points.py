@@ -1,0 +1,161 @@
+"""Point bodies on a line: clump weights, buoys and connectors at its vertices (MoorDyn's points).
+
+A ``Joint`` (``cablefem.line``) of mass m, volume V, drag area CdA and added-mass coefficient Ca
+sits at one vertex x of the line. It adds the concentrated force
+
+    F = (-m g + rho g V phi(z)) e_z + 1/2 rho CdA |u| u - (m + Ca rho V) a,   u = U - v,
+
+at that vertex: weight, buoyancy, drag in the relative velocity u (U the current, v the point's
+velocity) and the inertia of its mass and added mass, all isotropic as MoorDyn-C's points have
+them (Point.cpp). The buoyancy takes the volume as a sphere of radius R = (3 V / 4 pi)^(1/3)
+whose submerged fraction at centre height z is phi = h^2 (3 R - h) / (4 R^3), h = clip(R - z, 0,
+2 R): continuous and differentiable through the surface, so a buoy can float in equilibrium;
+fully submerged (z <= -R) it is MoorDyn's V rho g. The point has no seabed contact of its own: the
+line's elements on both sides carry it there.
+
+In the weak form a concentrated force is a Dirac load, so this is the catalog's one "node" load:
+it is evaluated at the vertices, not at quadrature points, and its rows go straight into the
+residual at the vertex (``LineSystem.evaluate``, ``cablefem.kernels.assemble_nodes``). Points at a
+prescribed end are not loaded: the end's motion is given, and the force reported there is the
+line's.
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from . import LoadSpec, Terms
+
+
+def sphere_fraction(z, radius):
+    """Submerged fraction phi (k,) of spheres of ``radius`` (k,) [m] centred at height z (k,) [m]
+    and dphi/dz (k,) [1/m]; a zero radius is fully submerged (phi = 1)."""
+    r = np.where(radius > 0.0, radius, 1.0)
+    h = np.clip(r - z, 0.0, 2.0 * r)
+    fraction = h * h * (3.0 * r - h) / (4.0 * r ** 3)
+    slope = -3.0 * h * (2.0 * r - h) / (4.0 * r ** 3)
+    return np.where(radius > 0.0, fraction, 1.0), np.where(radius > 0.0, slope, 0.0)
+
+
+def sphere_integral(z, radius):
+    """G(z) (k,) with dG/dz = phi: z below the sphere's band, 0 above it (the buoyancy's potential
+    energy is -rho g V G(z))."""
+    r = np.where(radius > 0.0, radius, 1.0)
+    h = np.clip(r - z, 0.0, 2.0 * r)
+    # int phi dz from above the band (h = 0) down to z, as a function of h: -int_0^h phi dh
+    inside = -(h ** 3 * r - h ** 4 / 4.0) / (4.0 * r ** 3)
+    below = z <= -r
+    return np.where(radius > 0.0, np.where(below, z, inside), z)
+
+
+class PointLoads:
+    """The joints of one line: vertex index (k,) and per joint its dry weight m g [N], buoyancy
+    rho g V [N], sphere radius [m], drag factor rho CdA / 2 [kg/m] and inertia m + Ca rho V [kg]."""
+
+    name = "points"
+    rule = "node"
+
+    def __init__(self, vertices, joints, water_density, gravity, current=(0.0, 0.0, 0.0)):
+        self.vertices = np.asarray(vertices, dtype=np.int64)
+        self.names = [joint.name for joint in joints]
+        mass = np.array([joint.mass for joint in joints], dtype=float)
+        volume = np.array([joint.volume for joint in joints], dtype=float)
+        self.dry = mass * gravity
+        self.buoyancy = water_density * gravity * volume
+        self.radius = np.cbrt(3.0 * volume / (4.0 * math.pi))
+        self.drag = 0.5 * water_density * np.array([joint.CdA for joint in joints], dtype=float)
+        self.inertia = mass + water_density * volume * np.array([joint.Ca for joint in joints], dtype=float)
+        self.current = np.asarray(current, dtype=float)
+
+    def evaluate(self, state, jacobian=True):
+        """Forces (3, k) at the points of ``state`` (positions, velocities and accelerations (3, k))."""
+        z = state.r[2]
+        k = z.shape[0]
+        fraction, slope = sphere_fraction(z, self.radius)
+        force = np.zeros((3, k))
+        force[2] = -self.dry + self.buoyancy * fraction
+        terms = Terms(force=force)
+        if jacobian:
+            terms.force_r = np.zeros((3, 3, k))
+            terms.force_r[2, 2] = self.buoyancy * slope
+        if state.v is not None and np.any(self.drag):
+            u = self.current[:, None] - state.v
+            speed = np.sqrt(np.einsum("ck,ck->k", u, u))
+            force += self.drag * speed * u
+            if jacobian:
+                unit = np.divide(u, speed, out=np.zeros_like(u), where=speed > 0.0)
+                terms.force_v = -self.drag * (speed * np.eye(3)[:, :, None] + speed * unit[:, None] * unit[None, :])
+        if state.a is not None and np.any(self.inertia):
+            force -= self.inertia * state.a
+            if jacobian:
+                terms.force_a = -self.inertia * np.broadcast_to(np.eye(3)[:, :, None], (3, 3, k))
+        return terms
+
+    def energy(self, z):
+        """Potential energy [J] of the points at heights z (k,): weight m g z less buoyancy."""
+        return float(np.sum(self.dry * z - self.buoyancy * sphere_integral(z, self.radius)))
+
+    def params(self):
+        """The compiled face's parameters per point (``SPEC.params``), each (k,)."""
+        return {"dry": self.dry, "buoyancy": self.buoyancy, "radius": self.radius, "drag": self.drag,
+                "inertia": self.inertia, "current": np.broadcast_to(self.current, (len(self.dry), 3))}
+
+
+@njit(cache=True, _nrt=False)
+def point_point(ctx, p, old, new, state, hold, out, M, u):
+    """The compiled face: one point's force at its vertex (``ctx.r``, ``ctx.v``, ``ctx.a``)."""
+    q = p.points
+    if not q.active:
+        return
+    fraction, slope = 1.0, 0.0
+    radius = q.radius
+    if radius > 0.0:
+        h = min(max(radius - ctx.r[2], 0.0), 2.0 * radius)
+        cube = 4.0 * radius * radius * radius
+        fraction = h * h * (3.0 * radius - h) / cube
+        slope = -3.0 * h * (2.0 * radius - h) / cube
+    out.f[2] += -q.dry + q.buoyancy * fraction
+    if ctx.jac:
+        out.A[2, 2] += -q.buoyancy * slope
+    if q.drag != 0.0:
+        u0, u1, u2 = q.current[0] - ctx.v[0], q.current[1] - ctx.v[1], q.current[2] - ctx.v[2]
+        speed = np.sqrt(u0 * u0 + u1 * u1 + u2 * u2)
+        c = q.drag * speed
+        out.f[0] += c * u0
+        out.f[1] += c * u1
+        out.f[2] += c * u2
+        if ctx.jac and speed > 0.0:
+            # A = -(f_v v_x): f_v = -drag (speed I + u u^T / speed)
+            w = ctx.v_x * q.drag
+            inv = 1.0 / speed
+            uu = (u0, u1, u2)
+            for a in range(3):
+                out.A[a, a] += w * speed
+                for b in range(3):
+                    out.A[a, b] += w * uu[a] * uu[b] * inv
+    if q.inertia != 0.0:
+        for a in range(3):
+            out.f[a] -= q.inertia * ctx.a[a]
+            if ctx.jac:
+                out.A[a, a] += ctx.a_x * q.inertia
+
+
+def build(setting):
+    """A line with loaded joints off its prescribed ends gets them (statics: weight and buoyancy)."""
+    line = setting.line
+    if line is None:
+        return None
+    vertices = line.joint_vertices()
+    keep = [i for i, (k, joint) in enumerate(line.joints) if joint.loaded
+            and not (k == 0 and line.prescribed[0]) and not (k == len(line.segments) and line.prescribed[1])]
+    if not keep:
+        return None
+    env = setting.environment
+    return PointLoads(vertices[keep], [line.joints[i][1] for i in keep], env.water_density, env.gravity,
+                      env.current)
+
+
+SPEC = LoadSpec("points", "node", (("dry", "f8"), ("buoyancy", "f8"), ("radius", "f8"), ("drag", "f8"),
+                                   ("inertia", "f8"), ("current", "f8", (3,))), point_point, PointLoads,
+                build=build)
