@@ -127,7 +127,9 @@ class Line:
     at segment boundaries, ((boundary, Joint), ...) with boundary 0 the anchor end and
     len(segments) the fairlead end (a line of a network joined through points, ``cablefem.network``).
     ``prescribed``: whether the anchor and the fairlead end have prescribed positions (the default)
-    or are unknowns (a free end, or an end the network solves for).
+    or are unknowns (a free end, or an end the network solves for). ``ends``: the names of the
+    network's points at the two ends (``cablefem.network``), None for a line's own anchor (fixed)
+    and fairlead (following the scene's motion).
     """
 
     name: str
@@ -137,6 +139,7 @@ class Line:
     order: int = 1
     joints: tuple = ()
     prescribed: tuple = (True, True)
+    ends: tuple = (None, None)
 
     def __post_init__(self):
         object.__setattr__(self, "anchor", _point(self.anchor, "anchor"))
@@ -152,6 +155,7 @@ class Line:
             raise InputError("joints must sit at distinct segment boundaries", key="joints")
         object.__setattr__(self, "joints", tuple(sorted(joints, key=lambda item: item[0])))
         object.__setattr__(self, "prescribed", tuple(bool(p) for p in self.prescribed))
+        object.__setattr__(self, "ends", tuple(self.ends))
 
     def joint_vertices(self):
         """Vertex index (k,) of each joint, in ``joints`` order."""

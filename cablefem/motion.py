@@ -25,13 +25,17 @@ def _ramp(t, ramp):
 def _raw(motion, t):
     """Unramped displacement, velocity, acceleration (n, 3) of ``motion`` at the times t (n,) [s]."""
     kind = motion.kind
-    zero = np.zeros((t.size, 3))
+    zero = np.zeros((t.size, len(motion.offset)))
     if kind == "fixed":
         return zero, zero, zero
     if kind in ("harmonic", "circular"):
         omega = 2.0 * np.pi / motion.period
         offset = np.asarray(motion.offset, dtype=float)
-        s, c = np.sin(omega * t)[:, None], np.cos(omega * t)[:, None]
+        if len(motion.phase):  # per component [rad]
+            angle = omega * t[:, None] + np.asarray(motion.phase, dtype=float)
+            s, c = np.sin(angle), np.cos(angle)
+        else:
+            s, c = np.sin(omega * t)[:, None], np.cos(omega * t)[:, None]
         if kind == "harmonic":
             amplitude = np.asarray(motion.amplitude, dtype=float)
             return offset + amplitude * s, amplitude * omega * c, -amplitude * omega**2 * s
@@ -57,6 +61,13 @@ def _table(times, positions, t):
     d = positions[k] + (t - times[k])[:, None] * slope
     d[before], d[after] = positions[0], positions[-1]
     return d, slope, np.zeros_like(d)
+
+
+def body_motion(motion, t):
+    """A coupled body's ramped displacement (x, y, z [m], roll, pitch, yaw [rad]), velocity and
+    acceleration at time t: each (6,), or (n, 6) for times (n,) (``fairlead_motion`` with six
+    components; harmonic components may have phases)."""
+    return fairlead_motion(motion, t)
 
 
 def fairlead_motion(motion, t):

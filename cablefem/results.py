@@ -145,6 +145,8 @@ def history_fields(system, element):
     fields = {}
     for load in system.loads:
         spec = catalog.spec_of(load)
+        if not spec.frames:
+            continue
         old = system.history[spec.rule][0]
         for name in spec.frames:
             fields[f"{spec.name}_{name}"] = old[spec.name][name].mean(axis=1)[element]

@@ -23,6 +23,7 @@ from .io.output import (RowsFile, deferred_signals, failure as write_failure, in
                         remove_partials, write_atomic)
 from .io.vtk import TimeSeriesWriter, polyline_mesh
 from .motion import fairlead_motion
+from .network import check_no_coupling, line_paths
 from .results import LineSampler, line_fields
 from .statics import solve_static
 from .system import LineSystem
@@ -53,18 +54,27 @@ class FairleadPath:
 
 
 def boundary_path(scene, line):
-    """The fairlead's prescribed path of ``line`` in ``scene`` (a ``FairleadPath``)."""
-    return FairleadPath(scene.motion, line.fairlead)
+    """The fairlead end's prescribed path of ``line`` in ``scene``: a ``FairleadPath`` following
+    [motion], or the path of the network point it names (``cablefem.network.line_paths``)."""
+    if line.ends == (None, None):
+        return FairleadPath(scene.motion, line.fairlead)
+    return line_paths(scene, line)[1]
+
+
+def anchor_path(scene, line):
+    """The anchor end's prescribed path of ``line`` (None: fixed where the line has it)."""
+    return None if line.ends[0] is None else line_paths(scene, line)[0]
 
 
 def start_states(scene, t0=0.0, systems=None):
-    """Static equilibrium of every line with its fairlead where the motion puts it at t0;
+    """Static equilibrium of every line with its prescribed ends where their paths put them at t0;
     ``systems``: the lines' dynamic systems, whose FEM the static ones share and which start
     from the statics' history of the points."""
+    check_no_coupling(scene)
     states, iterations = [], 0
     for k, line in enumerate(scene.lines):
-        d0 = fairlead_motion(scene.motion, t0)[0]
-        moved = line.with_ends(line.anchor, line.fairlead + d0)
+        anchor = anchor_path(scene, line)
+        moved = line.with_ends(line.anchor if anchor is None else anchor(t0)[0], boundary_path(scene, line)(t0)[0])
         fem = None if systems is None else systems[k].fem
         static = build_system(scene, moved, dynamic=False, fem=fem)
         result = solve_static(static, tolerance=scene.solver.tolerance, max_iterations=scene.solver.max_iterations)
@@ -143,7 +153,8 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
         options = integrator_options(solver)
         systems = [build_system(scene, line) for line in scene.lines]
         states, summary["static_newton_iterations"] = start_states(scene, systems=systems)
-        integrators += [integrator_class(system, X0, boundary_path(scene, line), dt=dt, **options)
+        integrators += [integrator_class(system, X0, boundary_path(scene, line), dt=dt,
+                                         anchor=anchor_path(scene, line), **options)
                         for system, line, X0 in zip(systems, scene.lines, states)]
         outputs["frames"] = TimeSeriesWriter(out_dir, scene.name)
         outputs["table"] = RowsFile(inside(out_dir, "tensions.csv"), _columns(scene))

@@ -64,6 +64,7 @@ class Motion:
     plane: str = "xz"
     times: np.ndarray | None = None
     positions: np.ndarray | None = None
+    phase: tuple = ()  # a body's harmonic motion: per component [rad]; empty: none
 
 
 from .dynamics import INTEGRATORS  # noqa: E402, F401  (the one registry: [solver] integrator names a key)
@@ -121,6 +122,8 @@ class Scene:
     moordyn_options: dict = field(default_factory=dict)  # raw OPTIONS of a MoorDyn file (name -> text)
     keys: dict = field(default_factory=dict)
     load_settings: dict = field(default_factory=dict)  # tables of the catalog's loads: section -> {key: value}
+    points: dict = field(default_factory=dict)  # name -> cablefem.network.Point
+    bodies: dict = field(default_factory=dict)  # name -> cablefem.network.Body
 
     def where(self, key):
         """(file, key) naming where scene key ``key`` was written (``Scene.keys``)."""

@@ -172,7 +172,8 @@ def solve_static(system, X0=None, tolerance=1e-8, max_iterations=50):
     start = time.perf_counter()
     X, slack = initial_shape(system) if X0 is None else (X0, False)
     system.reset_history(X)  # a load's history starts at the start shape (``initial_history``)
-    strategies = [("newton", lambda: _tension_only(system, X, tolerance, max_iterations, push=not slack)),
+    first = _tension_only if _point_loads(system) is None else _point_continuation
+    strategies = [("newton", lambda: first(system, X, tolerance, max_iterations, push=not slack)),
                   ("pseudo-transient", lambda: pseudo_transient(system, X, tolerance, 10 * max_iterations)),
                   ("settling", lambda: settle(system, X, tolerance, max_iterations)),
                   ("continuation", lambda: _stiffness_continuation(system, X, tolerance, max_iterations))]
@@ -288,6 +289,45 @@ def _tension_only(system, X, tolerance, max_iterations, push=True):
     start = X1 if ok else X
     X2, its2, norm2, history2, ok2 = newton(system, start, tolerance, max_iterations)
     return X2, its + its2, norm2, history + history2, ok2
+
+
+def _point_loads(system):
+    """The system's point loads (clump weights, buoys: ``cablefem.loads.points``), or None."""
+    return next((load for load in system.loads if getattr(load, "rule", "full") == "node"), None)
+
+
+def _point_continuation(system, X, tolerance, max_iterations, push=True):
+    """Newton with the weight and buoyancy of the line's points raised from none to theirs: the start
+    shape (a catenary of the line alone) is far from the shape a clump weight or a buoy gives it,
+    and each stage starts from the last one's solution; a stage that fails is halved (down to
+    1/64 of the way)."""
+    points = _point_loads(system)
+    dry, buoyancy = points.dry.copy(), points.buoyancy.copy()
+    done, step, total, history = 0.0, 0.25, 0, []
+    try:
+        X, its, norm, hist, ok = _tension_only(system, _scaled(points, dry, buoyancy, 0.0, X), tolerance,
+                                              max_iterations, push)
+        total, history = total + its, history + hist
+        while ok and done < 1.0:
+            target = min(1.0, done + step)
+            X1, its, norm, hist, ok1 = _tension_only(system, _scaled(points, dry, buoyancy, target, X), tolerance,
+                                                    max_iterations, push)
+            total, history = total + its, history + hist
+            if ok1:
+                X, done, step = X1, target, min(2.0 * step, 1.0)
+            elif step > 1.0 / 64.0:
+                step *= 0.5
+            else:
+                ok = False
+    finally:
+        points.dry, points.buoyancy = dry, buoyancy
+    return X, total, norm, history, ok and done >= 1.0
+
+
+def _scaled(points, dry, buoyancy, factor, X):
+    """Set the points' weight and buoyancy to ``factor`` of theirs; returns X (for chaining)."""
+    points.dry, points.buoyancy = factor * dry, factor * buoyancy
+    return X
 
 
 def _stiffness_continuation(system, X, tolerance, max_iterations, factor=10.0):

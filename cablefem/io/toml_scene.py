@@ -30,9 +30,11 @@ from ..line import Line, LineType, Segment
 from ..scene import INTEGRATORS, Contact, Environment, Friction, Motion, Output, Scene, Solver
 from . import validate as v
 from .moordyn_input import NO_MOTION_NOTE, read_moordyn
+from .toml_network import end, read_bodies, read_points
+from ..network import point_position, strings as network_strings
 
 TOP_LEVEL_KEYS = ("name", "environment", "line_types", "lines", "seabed", "friction",
-                  "motion", "solver", "output", "moordyn")
+                  "motion", "solver", "output", "moordyn", "points", "bodies")
 SEABED_KINDS = ("horizontal", "plane", "grid", "mesh", "points")
 #: the key that places each kind of seabed (named by the scene-level checks)
 SEABED_KEY = {"horizontal": "depth", "plane": "point", "grid": "file", "mesh": "file", "points": "file"}
@@ -61,7 +63,8 @@ LINE_TYPE_KEYS = {"diameter": v.limited(v.positive, "diameter"), "mass": v.limit
                   "EA": v.limited(v.positive, "EA"), "damping": v.limited(v.non_negative, "damping_time"),
                   "Cd_normal": _COEFFICIENT, "Cd_tangential": _COEFFICIENT, "Ca_normal": _COEFFICIENT,
                   "Ca_tangential": _COEFFICIENT, "damping_when_slack": v.boolean}
-LINE_KEYS = {"name": v.text, "anchor": _POINT, "fairlead": _POINT, "segments": v.tables, "order": _ORDER}
+LINE_KEYS = {"name": v.text, "anchor": lambda value, key: value, "fairlead": lambda value, key: value,
+             "segments": v.tables, "order": _ORDER}  # an end: coordinates or a point's name (toml_network.end)
 SEGMENT_KEYS = {"type": v.text, "length": _LENGTH, "elements": _ELEMENTS}
 CONTACT_KEYS = {"stiffness": v.limited(v.positive, "stiffness"),
                 "damping_ratio": v.limited(v.non_negative, "damping_ratio"),
@@ -117,7 +120,15 @@ def read_toml_scene(path, data=None):
     else:
         base = None
         v.check_keys(data, TOP_LEVEL_KEYS + tuple(catalog.sections()), "", required=("line_types", "lines", "seabed"))
-        lines = _lines(data["lines"], _line_types(data["line_types"]))
+    bodies = read_bodies(data["bodies"], folder) if "bodies" in data else {}
+    points = read_points(data["points"], bodies) if "points" in data else {}
+    if base is None:
+        lines = _lines(data["lines"], _line_types(data["line_types"]), points, bodies)
+    elif points or bodies:
+        raise InputError("[points] and [bodies] may not be combined with [moordyn] (the file gives them)",
+                         key="points" if points else "bodies")
+    if points or bodies:
+        lines = network_strings(lines, points, bodies)
     environment = replace(base.environment if base else Environment(),
                           **_section(data, "environment", ENVIRONMENT_KEYS))
     seabed, contact, simplify = _seabed(data.get("seabed", {}), folder, base)
@@ -136,7 +147,8 @@ def read_toml_scene(path, data=None):
     return Scene(name=name, lines=lines, seabed=seabed, contact=contact, environment=environment,
                  friction=friction, motion=motion, solver=solver, output=output, source=path,
                  notes=notes, moordyn_options=dict(base.moordyn_options) if base else {}, keys=keys,
-                 load_settings=load_settings)
+                 load_settings=load_settings, points=dict(base.points) if base else points,
+                 bodies=dict(base.bodies) if base else bodies)
 
 
 def _section(data, name, converters):
@@ -182,8 +194,10 @@ def _line_types(raw):
     return types
 
 
-def _lines(raw, types):
-    """The [[lines]] array as Line objects, anchor first, with the chord-strain check."""
+def _lines(raw, types, points=None, bodies=None):
+    """The [[lines]] array as Line objects, anchor first, with the chord-strain check (a line
+    between two points of a network: checked as a string, ``network_strings``)."""
+    points, bodies = points or {}, bodies or {}
     lines, names = [], set()
     for i, entry in enumerate(v.tables(raw, "lines")):
         prefix = f"lines[{i}]"
@@ -201,11 +215,14 @@ def _lines(raw, types):
                 raise InputError(f"unknown line type '{kind}'{v.suggest(kind, types)}; "
                                  f"defined in [line_types]: {', '.join(types)}", key=f"{seg_prefix}.type")
             segments.append(Segment(types[kind], seg_values["length"], seg_values["elements"]))
+        (anchor, a), (fairlead, b) = (end(values[key], f"{prefix}.{key}", points) for key in ("anchor", "fairlead"))
+        anchor = anchor if a is None else point_position(points[a], bodies)
+        fairlead = fairlead if b is None else point_position(points[b], bodies)
         try:
-            line = Line(name, values["anchor"], values["fairlead"], segments, values.get("order", 1))
+            line = Line(name, anchor, fairlead, segments, values.get("order", 1), ends=(a, b))
         except InputError as error:
             raise error.within(prefix=prefix) from None
-        lines.append(v.check_chord(line, prefix))
+        lines.append(v.check_chord(line, prefix) if (a, b) == (None, None) else line)
     return lines
 
 

@@ -40,6 +40,13 @@ LIMITS = {
     "iterations": (10000, "", "Newton converges in tens of iterations or not at all"),
     "order": (20, "", "P1-P3 are the useful orders; scikit-fem's ElementLinePp is well conditioned "
               "far beyond 20"),
+    "point_mass": (1e9, "kg", "the heaviest clump weights and floating platforms are ~1e7-1e8 kg"),
+    "volume": (1e7, "m^3", "the largest floating platforms displace ~1e5-1e6 m^3"),
+    "area": (1e6, "m^2", "a point's or body's drag area is ~1-1e4 m^2"),
+    "angle": (1e4, "deg", "a few turns"),
+    "inertia": (1e15, "kg m^2", "floating platforms are ~1e10-1e12 kg m^2"),
+    "force": (1e10, "N", "mooring and environmental loads are ~1e6-1e8 N"),
+    "moment": (1e13, "N m", "mooring and environmental moments are ~1e8-1e11 N m"),
     "nodes": (1_000_000, "", "~6 KB of memory per node (0.9 GB measured at 1e5 elements) and ~5 us "
               "per node and step: 1e6 nodes take ~6 GB and ~5 s per step"),
 }
