@@ -16,6 +16,8 @@ import sys
 import time
 import traceback
 
+import numpy as np
+
 from .errors import ConvergenceError, InputError
 
 
@@ -37,20 +39,64 @@ def write_json(path, data):
 
 def solve_scene_static(scene):
     """Static equilibrium of every line of a scene: (list of LineReport, Newton iterations, results)."""
+    return static_network(scene)[:3]
+
+
+def static_network(scene):
+    """Static equilibrium of every line of a scene and of its network's coupling unknowns:
+    (list of LineReport, Newton iterations, results per line (``StaticResult``), network) with
+    network the ``NetworkStatics`` of the junctions and free bodies (None without any)."""
     from .results import report
     from .statics import solve_line
 
-    reports, results, iterations = [], [], 0
-    for line in scene.lines:
-        system, result = solve_line(line, scene.seabed, scene.contact, scene.environment,
-                                    fit_touchdown=scene.solver.fit_touchdown,
-                                    tolerance=scene.solver.tolerance,
-                                    max_iterations=scene.solver.max_iterations,
-                                    assembly=scene.solver.assembly, sections=scene.load_settings)
-        iterations += result.iterations
+    network, coupled = None, set()
+    if scene.points or scene.bodies:
+        from .coupling import solve_network
+        from .network import coupling
+        from .run import build_system
+
+        if any(coupling(scene.lines, scene.points, scene.bodies)):
+            network = solve_network(scene, lambda line: build_system(scene, line, dynamic=False),
+                                    tolerance=scene.solver.tolerance, max_iterations=scene.solver.max_iterations)
+            coupled = {k for k, X in enumerate(network.states) if X is not None}
+    reports, results, iterations = [], [], 0 if network is None else network.iterations
+    for k, line in enumerate(scene.lines):
+        if k in coupled:
+            from .statics import StaticResult, scale_free_residual
+
+            system, X = network.systems[k], network.states[k]
+            result = StaticResult(X, 0, network.residual, strategy="network",
+                                  increment=scale_free_residual(system, X))
+        else:
+            system, result = solve_line(line, scene.seabed, scene.contact, scene.environment,
+                                        fit_touchdown=scene.solver.fit_touchdown,
+                                        tolerance=scene.solver.tolerance,
+                                        max_iterations=scene.solver.max_iterations,
+                                        assembly=scene.solver.assembly, sections=scene.load_settings)
+            iterations += result.iterations
+            X = result.X
         results.append(result)
-        reports.append(report(system, result.X))
-    return reports, iterations, results
+        reports.append(report(system, X))
+    return reports, iterations, results, network
+
+
+def network_json(scene, reports, network=None):
+    """The ``points`` and ``bodies`` fields of ``cablefem static --json`` (docs/outputs.md)."""
+    from .coupling import network_loads, point_positions
+
+    poses = {} if network is None else network.poses
+    ends = [((rep.anchor_force, rep.nodes[0]), (rep.fairlead_force, rep.nodes[-1])) for rep in reports]
+    forces, bodies = network_loads(scene, ends, poses)
+    positions = point_positions(scene, [rep.nodes for rep in reports])
+    points = {name: {"position": positions[name].tolist(), "force": forces.get(name, np.zeros(3)).tolist()}
+              for name in scene.points}
+    out = {}
+    for name, body in scene.bodies.items():
+        pose = poses.get(name, np.concatenate([body.position, body.rotation]))
+        force, moment = bodies[name]
+        out[name] = {"kind": body.kind, "position": pose[:3].tolist(), "rotation_deg": np.degrees(pose[3:]).tolist(),
+                     "force": force.tolist(), "moment": moment.tolist()}
+    return {"points": points, "bodies": out}
 
 
 def cmd_static(args):
@@ -61,7 +107,7 @@ def cmd_static(args):
     scene = _load(args.scene)
     if args.json:
         prepare_file(args.json)  # before the work: a --json that cannot be written fails now
-    reports, iterations, results = solve_scene_static(scene)
+    reports, iterations, results, network = static_network(scene)
     wall = time.perf_counter() - start
     print(f"scene {scene.name}: seabed {scene.seabed.describe()}")
     for note in scene.notes:
@@ -72,9 +118,17 @@ def cmd_static(args):
         td = "-" if rep.touchdown_s is None else f"{rep.touchdown_s:.3f}"
         print(f"{rep.name:<12} {rep.fairlead_tension:15.6e} {rep.anchor_tension:15.6e} {td:>16} "
               f"{res.iterations:6d} {res.residual:9.2e} {res.increment:9.2e}")
+    fields = network_json(scene, reports, network) if scene.points or scene.bodies else {}
+    for name, body in fields.get("bodies", {}).items():
+        pose = body["position"] + body["rotation_deg"]
+        print(f"body {name} ({body['kind']}): pose " + " ".join(f"{x:.6g}" for x in pose) + " [m, deg]; force "
+              + " ".join(f"{x:.6e}" for x in body["force"]) + " [N]; moment "
+              + " ".join(f"{x:.6e}" for x in body["moment"]) + " [N m]")
+    if network is not None:
+        print(f"network: {len(network.history) - 1} outer Newton iterations, balance residual {network.residual:.2e}")
     print(f"{iterations} Newton iterations in {wall:.3f} s")
     if args.json:
-        write_json(args.json, {
+        write_json(args.json, {**fields,
             "lines": [rep.as_dict() for rep in reports],
             "newton_iterations": iterations,
             "wall_time_s": wall,

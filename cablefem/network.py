@@ -18,7 +18,7 @@ point as a ``Joint`` at the vertex between them: one banded block, solved as one
 point at the end of one line only is a free end of its string. What remains are the string ends
 at fixed and coupled points and at points of fixed and coupled bodies (prescribed paths,
 ``EndPath``), and the *coupling* unknowns: free points where three or more line ends meet and
-free bodies, which ``cablefem.coupling`` solves for.
+free bodies, which ``cablefem.coupling`` solves for in statics.
 """
 
 import math
@@ -80,9 +80,11 @@ class Body:
     [rad] at rest; ``motion`` of a coupled body (a ``Motion`` of six components: x, y, z [m], roll,
     pitch, yaw [rad], added to the rest values); a free body's ``mass`` [kg], principal moments of
     ``inertia`` (3,) [kg m^2] about its centre of gravity ``cg`` (3,) [m, body frame], displaced
-    ``volume`` [m^3] acting at its centre of buoyancy ``cb`` (3,) [m, body frame], and the steady
-    external ``force`` (3,) [N] and ``moment`` (3,) [N m, about the reference point] of an offset
-    study."""
+    ``volume`` [m^3] acting at its centre of buoyancy ``cb`` (3,) [m, body frame] (the volume at the
+    reference point's z = 0; MoorPy's rM may stand for cb: buoyancy there gives the metacentric
+    restoring moment), the ``waterplane_area`` [m^2] whose heave restoring force is
+    -rho g A_wp z (MoorPy's AWP), and the steady external ``force`` (3,) [N] and ``moment`` (3,)
+    [N m, about the reference point] of an offset study."""
 
     name: str
     kind: str
@@ -93,6 +95,7 @@ class Body:
     cg: np.ndarray = field(default_factory=lambda: np.zeros(3))
     volume: float = 0.0
     cb: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    waterplane_area: float = 0.0
     force: np.ndarray = field(default_factory=lambda: np.zeros(3))
     moment: np.ndarray = field(default_factory=lambda: np.zeros(3))
     motion: object = None
@@ -102,7 +105,7 @@ class Body:
         object.__setattr__(self, "kind", _kind(self.kind, f"{key}.kind"))
         for name in ("position", "rotation", "inertia", "cg", "cb", "force", "moment"):
             object.__setattr__(self, name, _vector(getattr(self, name), 3, f"{key}.{name}"))
-        for name in ("mass", "volume"):
+        for name in ("mass", "volume", "waterplane_area"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
                 raise InputError(f"must be a number >= 0, got {value!r}", key=f"{key}.{name}")
@@ -355,11 +358,12 @@ def point_position(point, bodies):
 
 
 def check_no_coupling(scene):
-    """InputError if ``scene`` has coupling unknowns (junction points, free bodies), which need the
-    coupled solve of ``cablefem.coupling``."""
+    """InputError if ``scene`` has coupling unknowns (junction points, free bodies): their statics
+    are solved (``cablefem.coupling``, ``cablefem static``), their dynamics not yet."""
     junctions, free_bodies = coupling(scene.lines, scene.points, scene.bodies)
     if junctions or free_bodies:
         what = ", ".join([f"point '{name}' (a junction of lines)" for name in junctions] +
                          [f"body '{name}' (free)" for name in free_bodies])
-        raise InputError(f"{what}: a network with coupling unknowns is not solved yet; fix the point or "
-                         "body, or make it coupled", key="points" if junctions else "bodies")
+        raise InputError(f"{what}: the dynamics of a network with coupling unknowns are not solved yet "
+                         "(`cablefem static` solves its equilibrium); for a run, make the point or body "
+                         "coupled or fixed", key="points" if junctions else "bodies")

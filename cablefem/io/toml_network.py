@@ -21,6 +21,7 @@ BODY_KEYS = {"kind": v.choice(("fixed", "coupled", "free")), "position": _COORDI
              "rotation_deg": v.limited(v.vector3, "angle"), "mass": _MASS,
              "inertia": v.limited(v.vector3, "inertia"), "cg": _COORDINATE,
              "volume": v.limited(v.non_negative, "volume"), "cb": _COORDINATE,
+             "waterplane_area": v.limited(v.non_negative, "area"),
              "force": v.limited(v.vector3, "force"), "moment": v.limited(v.vector3, "moment"),
              "motion": v.table}
 BODY_MOTION_KINDS = ("fixed", "harmonic", "table")
