@@ -367,3 +367,57 @@ def check_no_coupling(scene):
         raise InputError(f"{what}: the dynamics of a network with coupling unknowns are not solved yet "
                          "(`cablefem static` solves its equilibrium); for a run, make the point or body "
                          "coupled or fixed", key="points" if junctions else "bodies")
+
+
+# ------------------------------------------------------------------------------- run outputs
+class NetworkRows:
+    """The network's columns of tensions.csv and extremes of summary.json in a run: the force
+    [N] of the strings that end at each named point (fx, fy, fz: the sum of those ends' forces)
+    and each body's force and moment [N m] about its reference point where its motion puts it."""
+
+    def __init__(self, scene):
+        self.ends = {}  # point -> [(line index, 0 fairlead | 1 anchor)]
+        for k, line in enumerate(scene.lines):
+            for name, which in zip(line.ends, (1, 0)):
+                if name is not None:
+                    self.ends.setdefault(name, []).append((k, which))
+        self.points = sorted(self.ends)
+        self.bodies = {name: body for name, body in sorted(scene.bodies.items())
+                       if any(scene.points[p].body == name for p in self.points)}
+        self.locals = {name: [(p, scene.points[p].position) for p in self.points if scene.points[p].body == name]
+                       for name in self.bodies}
+        self.extremes = {**{f"point:{p}": {} for p in self.points}, **{f"body:{b}": {} for b in self.bodies}}
+
+    def columns(self):
+        return ([f"point:{p}:{c}" for p in self.points for c in ("fx", "fy", "fz")] +
+                [f"body:{b}:{c}" for b in self.bodies for c in ("fx", "fy", "fz", "mx", "my", "mz")])
+
+    def values(self, times, rows):
+        """Per row (of ``rows``: per line (fairlead, anchor) forces) the network's values, with
+        the extremes updated; (len(rows), len(columns)) floats."""
+        from .motion import body_motion
+
+        times = np.asarray(times, dtype=float)
+        force = {p: np.array([sum(row[k][which] for k, which in self.ends[p]) for row in rows]) for p in self.points}
+        out = [force[p] for p in self.points]
+        for name, body in self.bodies.items():
+            d = (body_motion(body.motion, times)[0] if body.kind == "coupled" and body.motion is not None
+                 else np.zeros((len(times), 6)))
+            R = rotation(body.rotation + d[:, 3:])
+            total, moment = np.zeros((len(times), 3)), np.zeros((len(times), 3))
+            for p, local in self.locals[name]:
+                total += force[p]
+                moment += np.cross(R @ local, force[p])
+            out += [total, moment]
+            self._update(f"body:{name}", times, {"force": total, "moment": moment})
+        for p in self.points:
+            self._update(f"point:{p}", times, {"force": force[p]})
+        return np.hstack(out) if out else np.zeros((len(times), 0))
+
+    def _update(self, key, times, series):
+        entry = self.extremes[key]
+        for name, values in series.items():
+            size = np.linalg.norm(values, axis=1)
+            k = int(np.argmax(size))
+            if f"{name}_max" not in entry or size[k] > entry[f"{name}_max"]:
+                entry[f"{name}_max"], entry[f"{name}_max_t"] = float(size[k]), float(times[k])

@@ -23,7 +23,7 @@ from .io.output import (RowsFile, deferred_signals, failure as write_failure, in
                         remove_partials, write_atomic)
 from .io.vtk import TimeSeriesWriter, polyline_mesh
 from .motion import fairlead_motion
-from .network import check_no_coupling, line_paths
+from .network import NetworkRows, check_no_coupling, line_paths
 from .results import LineSampler, line_fields
 from .statics import solve_static
 from .system import LineSystem
@@ -142,7 +142,8 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
     summary = {"scene": scene.name, "seabed": scene.seabed.describe(),
                "notes": list(scene.notes) + setting_warnings(scene, dt), "dt": dt, "duration": duration}
     integrators, outputs, status = [], {}, "completed"
-    step_control, tracker = StepControl(solver, dt), _Extremes([line.name for line in scene.lines])
+    step_control = StepControl(solver, dt)
+    tracker = _Extremes([line.name for line in scene.lines], NetworkRows(scene) if scene.points else None)
     try:
         seabed_vtu = inside(out_dir, "seabed.vtu")
         try:
@@ -157,7 +158,7 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
                                          anchor=anchor_path(scene, line), **options)
                         for system, line, X0 in zip(systems, scene.lines, states)]
         outputs["frames"] = TimeSeriesWriter(out_dir, scene.name)
-        outputs["table"] = RowsFile(inside(out_dir, "tensions.csv"), _columns(scene))
+        outputs["table"] = RowsFile(inside(out_dir, "tensions.csv"), _columns(scene, tracker.network))
         outputs["bar"] = _progress(progress, duration)
         _advance(scene, integrators, outputs, step_control, tracker, duration, dt)
     except KeyboardInterrupt:
@@ -186,9 +187,8 @@ def _advance(scene, integrators, outputs, step_control, tracker, duration, dt):
     def record(rows):
         """Write the rows (t, forces) and, if one is due, a frame; the time [s] of the last row."""
         nonlocal frame
-        table.write([_row(t, forces) for t, forces in rows])
-        for t, forces in rows:
-            tracker.update(t, forces)
+        table.write(tracker.rows(rows))
+        t = rows[-1][0]
         if t >= frame * every - near:
             frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V, sampler=sampler)
                                            for i, sampler in zip(integrators, samplers)]))
@@ -203,7 +203,7 @@ def _advance(scene, integrators, outputs, step_control, tracker, duration, dt):
                 step_control.advance(integrators, stop - t)
                 rows = [(integrators[0].t, [integ.reactions() for integ in integrators])]
             else:  # fixed steps to the next output time, each line in one call
-                rows = _march(integrators, step_control.times(t, stop), table)
+                rows = _march(integrators, step_control.times(t, stop), lambda rows: table.write(tracker.rows(rows)))
             if bar is not None:
                 bar.update(rows[-1][0] - t)
             t = record(rows)
@@ -232,6 +232,7 @@ def _finish(summary, status, integrators, outputs, step_control, tracker, start,
             "steps": sum(s["steps"] for s in stats),
             "newton_iterations": sum(s["newton_iterations"] for s in stats),
             "integrator": stats, "tension_extremes": tracker.as_dict(),
+            **({"network_extremes": tracker.network.extremes} if tracker.network is not None else {}),
             "adaptive": {"accepted": step_control.accepted, "rejected": step_control.rejected}
             if step_control.adaptive else None})
         summary.setdefault("static_newton_iterations", 0)
@@ -297,9 +298,9 @@ class StepControl:
             self.h = h * max(0.2, factor)
 
 
-def _march(integrators, times, table):
+def _march(integrators, times, write):
     """Every line marched to ``times``: rows (t, [(fairlead, anchor) force per line]). If a line
-    fails, the rows every line reached are written to ``table`` before the error goes on."""
+    fails, the rows every line reached are given to ``write`` before the error goes on."""
     forces = []
     try:
         for integ in integrators:
@@ -307,25 +308,27 @@ def _march(integrators, times, table):
     except ConvergenceError as error:
         last = len(forces) == len(integrators) - 1  # the lines before it have all the rows
         reached = len(error.forces) if last else 0
-        table.write([_row(times[k], [f[k] for f in forces + [error.forces]]) for k in range(reached)])
+        if reached:
+            write([(times[k], [f[k] for f in forces + [error.forces]]) for k in range(reached)])
         raise
     return [(tk, [f[k] for f in forces]) for k, tk in enumerate(times)]
 
 
-def _row(t, forces):
+def _row(t, forces, extra=()):
     """A tensions.csv row: t, then per line fairlead_tension, anchor_tension, fx, fy, fz, from each
-    line's (fairlead, anchor) forces."""
+    line's (fairlead, anchor) forces, then the network's ``extra`` values."""
     values = [t]
     for fairlead, anchor in forces:
         values += [np.linalg.norm(fairlead), np.linalg.norm(anchor), *fairlead]
-    return [f"{x:.10g}" for x in values]
+    return [f"{x:.10g}" for x in [*values, *extra]]
 
 
-def _columns(scene):
+def _columns(scene, network=None):
     names = ["fairlead_tension", "anchor_tension", "fx", "fy", "fz"]
+    extra = [] if network is None else network.columns()
     if len(scene.lines) == 1:
-        return ["t"] + names
-    return ["t"] + [f"{line.name}:{n}" for line in scene.lines for n in names]
+        return ["t"] + names + extra
+    return ["t"] + [f"{line.name}:{n}" for line in scene.lines for n in names] + extra
 
 
 def _progress(progress, duration):
@@ -338,11 +341,22 @@ def _progress(progress, duration):
 
 
 class _Extremes:
-    """Largest and smallest fairlead and anchor tensions per line, with their times."""
+    """Largest and smallest fairlead and anchor tensions per line, with their times, and the
+    network's columns and extremes (``network``: a ``NetworkRows`` or None)."""
 
-    def __init__(self, names):
+    def __init__(self, names, network=None):
         self.names = names
         self.table = {n: {} for n in names}
+        self.network = network
+
+    def rows(self, rows):
+        """The tensions.csv rows of ``rows`` (t, forces per line), the extremes updated."""
+        for t, forces in rows:
+            self.update(t, forces)
+        if self.network is None:
+            return [_row(t, forces) for t, forces in rows]
+        extra = self.network.values([t for t, _ in rows], [forces for _, forces in rows])
+        return [_row(t, forces, values) for (t, forces), values in zip(rows, extra)]
 
     def update(self, t, forces):
         for name, (fairlead, anchor) in zip(self.names, forces):

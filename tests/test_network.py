@@ -211,3 +211,50 @@ def test_an_openfast_output_drives_a_body_by_its_platform_channels(tmp_path):
     np.testing.assert_allclose(d, [4.0, 0.0, 1.0, 0.0, np.radians(2.0), 0.0], atol=1e-12)
     path = BodyPointPath(body, scene.points["f1"].position)
     np.testing.assert_allclose(path(2.0)[0], [4.0, 0.0, 1.0] + rotation(d[3:]) @ [0.0, 40.0, -15.0], atol=1e-12)
+
+
+def test_a_run_reports_each_point_and_body_force_and_the_bodys_moment(tmp_path):
+    """tensions.csv's network columns: a point's force is the force of the string ending there, the
+    body's force their sum and its moment the sum of (x - r) x F with x - r = R(t) p computed here
+    from the body's path; summary.json's extremes are the largest magnitudes of those columns."""
+    import json
+
+    import pandas as pd
+
+    from cablefem.motion import body_motion
+    from cablefem.network import rotation
+    from cablefem.run import run_scene
+
+    motion = """[bodies.platform.motion]
+kind = "harmonic"
+amplitude = [3.0, 1.0, 0.5, 2.0, 3.0, 5.0]
+period = 6.0
+ramp = 3.0
+[solver]
+dt = 0.05
+duration = 3.0
+[output]
+every = 3.0
+"""
+    text = NETWORK.replace('rotation_deg = [0.0, 0.0, 90.0]\n', 'rotation_deg = [0.0, 0.0, 90.0]\n' + motion)
+    text = text.replace("[points.a1]", "[points.f2]\nbody = \"platform\"\nposition = [30.0, 0.0, -15.0]\n"
+                        "[points.a2]\nkind = \"fixed\"\nposition = [700.0, 0.0, -200.0]\n[points.a1]")
+    text += ('[[lines]]\nname = "second"\nanchor = "a2"\nfairlead = "f2"\n'
+             'segments = [{ type = "chain", length = 760.0, elements = 20 }]\n')
+    scene = load_scene(write(tmp_path, text))
+    summary = run_scene(scene, tmp_path / "out", progress=False)
+    table = pd.read_csv(tmp_path / "out" / "tensions.csv")
+    f1 = table[[f"point:f1:f{c}" for c in "xyz"]].to_numpy()
+    f2 = table[[f"point:f2:f{c}" for c in "xyz"]].to_numpy()
+    np.testing.assert_allclose(f2, table[[f"second:f{c}" for c in "xyz"]].to_numpy(), rtol=0, atol=1e-3)
+    body = table[[f"body:platform:{c}" for c in ("fx", "fy", "fz", "mx", "my", "mz")]].to_numpy()
+    np.testing.assert_allclose(body[:, :3], f1 + f2, rtol=1e-9, atol=1e-3)
+    d = body_motion(scene.bodies["platform"].motion, table["t"].to_numpy())[0]
+    R = rotation(scene.bodies["platform"].rotation + d[:, 3:])
+    moment = (np.cross(R @ scene.points["f1"].position, f1) + np.cross(R @ scene.points["f2"].position, f2))
+    np.testing.assert_allclose(body[:, 3:], moment, rtol=1e-8, atol=1e-2)
+    assert np.abs(d[:, 3:]).max() > 0.01  # the body has turned
+    extremes = json.loads((tmp_path / "out" / "summary.json").read_text())["network_extremes"]
+    assert extremes["body:platform"]["moment_max"] == pytest.approx(np.linalg.norm(body[:, 3:], axis=1).max(), rel=1e-8)
+    assert extremes["point:f1"]["force_max"] == pytest.approx(np.linalg.norm(f1, axis=1).max(), rel=1e-8)
+    assert summary["completed"]
