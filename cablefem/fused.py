@@ -165,6 +165,13 @@ class FusedEvaluator:
         x, info = lapack.dgbtrs(lu, self.kl, self.ku, rhs, piv)
         return x.reshape(-1, 3)[self.band_of_free]
 
+    def solve_many(self, factors, rows):
+        """Increments (m, N_free, 3) for m residuals ``rows`` (m, N, 3): one banded solve."""
+        lu, piv = factors
+        rhs = -rows[:, self.free_order].reshape(len(rows), -1).T
+        x, info = lapack.dgbtrs(lu, self.kl, self.ku, np.asfortranarray(rhs), piv)
+        return x.T.reshape(len(rows), -1, 3)[:, self.band_of_free]
+
     def dense(self, band):
         """The banded tangent as a dense matrix in ``fem.free_vector_dofs`` order (for tests)."""
         n, kl, ku = self.n, self.kl, self.ku

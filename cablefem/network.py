@@ -358,15 +358,42 @@ def point_position(point, bodies):
 
 
 def check_no_coupling(scene):
-    """InputError if ``scene`` has coupling unknowns (junction points, free bodies): their statics
-    are solved (``cablefem.coupling``, ``cablefem static``), their dynamics not yet."""
+    """InputError if ``scene`` has free bodies, whose dynamics are not solved yet (their statics
+    are: ``cablefem.coupling``, ``cablefem static``); junctions step with ``JunctionSteps``
+    (BDF2 at fixed steps only)."""
     junctions, free_bodies = coupling(scene.lines, scene.points, scene.bodies)
-    if junctions or free_bodies:
-        what = ", ".join([f"point '{name}' (a junction of lines)" for name in junctions] +
-                         [f"body '{name}' (free)" for name in free_bodies])
-        raise InputError(f"{what}: the dynamics of a network with coupling unknowns are not solved yet "
-                         "(`cablefem static` solves its equilibrium); for a run, make the point or body "
-                         "coupled or fixed", key="points" if junctions else "bodies")
+    if free_bodies:
+        what = ", ".join(f"body '{name}' (free)" for name in free_bodies)
+        raise InputError(f"{what}: the dynamics of a free body are not solved yet (`cablefem static` solves "
+                         "its equilibrium); for a run, make the body coupled or fixed", key="bodies")
+    solver = scene.solver
+    if junctions and (solver.integrator != "bdf2" or solver.adaptive):
+        raise InputError(f"point '{junctions[0]}' joins three or more lines: a network with junctions runs "
+                         "with integrator = \"bdf2\" and fixed steps (adaptive = false)", key="solver")
+
+
+def junction_ends(lines, points, bodies):
+    """{junction: [(line index, end)]} of the strings ``lines`` (end 0: anchor, 1: fairlead)."""
+    junctions, _ = coupling(lines, points, bodies)
+    out = {name: [] for name in junctions}
+    for k, line in enumerate(lines):
+        for end, name in enumerate(line.ends):
+            if name in out and not line.prescribed[end]:
+                out[name].append((k, end))
+    return out
+
+
+def dynamic_lines(scene):
+    """The scene's strings for a run: each junction's own point (its mass, volume, drag and added
+    mass) rides as a joint at the end of the first string that ends there."""
+    lines = list(scene.lines)
+    for name, members in junction_ends(scene.lines, scene.points, scene.bodies).items():
+        joint = scene.points[name].joint
+        if members and joint.loaded:
+            k, end = members[0]
+            at = 0 if end == 0 else len(lines[k].segments)
+            lines[k] = replace(lines[k], joints=lines[k].joints + ((at, joint),))
+    return lines
 
 
 # ------------------------------------------------------------------------------- run outputs

@@ -23,7 +23,7 @@ from .io.output import (RowsFile, deferred_signals, failure as write_failure, in
                         remove_partials, write_atomic)
 from .io.vtk import TimeSeriesWriter, polyline_mesh
 from .motion import fairlead_motion
-from .network import NetworkRows, check_no_coupling, line_paths
+from .network import NetworkRows, check_no_coupling, coupling, dynamic_lines, junction_ends, line_paths
 from .results import LineSampler, line_fields
 from .statics import solve_static
 from .system import LineSystem
@@ -67,24 +67,52 @@ def anchor_path(scene, line):
 
 
 def start_states(scene, t0=0.0, systems=None):
-    """Static equilibrium of every line with its prescribed ends where their paths put them at t0;
-    ``systems``: the lines' dynamic systems, whose FEM the static ones share and which start
-    from the statics' history of the points."""
+    """Static equilibrium of every line with its prescribed ends where their paths put them at t0
+    (a network's junctions solved with their strings: ``cablefem.coupling``); ``systems``: the
+    lines' dynamic systems, whose FEM the static ones share and which start from the statics'
+    history of the points."""
     check_no_coupling(scene)
-    states, iterations = [], 0
+    network = None
+    if any(coupling(scene.lines, scene.points, scene.bodies)):
+        from .coupling import solve_network
+
+        network = solve_network(scene, lambda line: build_system(scene, line, dynamic=False),
+                                tolerance=scene.solver.tolerance,
+                                max_iterations=scene.solver.max_iterations)
+    states, iterations = [], 0 if network is None else network.iterations
     for k, line in enumerate(scene.lines):
-        anchor = anchor_path(scene, line)
-        moved = line.with_ends(line.anchor if anchor is None else anchor(t0)[0], boundary_path(scene, line)(t0)[0])
-        fem = None if systems is None else systems[k].fem
-        static = build_system(scene, moved, dynamic=False, fem=fem)
-        result = solve_static(static, tolerance=scene.solver.tolerance, max_iterations=scene.solver.max_iterations)
+        if network is not None and network.states[k] is not None:
+            static, X = network.systems[k], network.states[k]
+        else:
+            anchor = anchor_path(scene, line)
+            moved = line.with_ends(line.anchor if anchor is None else anchor(t0)[0],
+                                   boundary_path(scene, line)(t0)[0])
+            fem = None if systems is None else systems[k].fem
+            static = build_system(scene, moved, dynamic=False, fem=fem)
+            result = solve_static(static, tolerance=scene.solver.tolerance,
+                                  max_iterations=scene.solver.max_iterations)
+            X, iterations = result.X, iterations + result.iterations
         if systems is not None:
             for rule, (old, new) in static.history.items():
                 systems[k].history[rule][0][...] = old
                 systems[k].history[rule][1][...] = old
-        states.append(result.X)
-        iterations += result.iterations
+        states.append(X)
     return states, iterations
+
+
+def junction_steps(scene, integrators):
+    """Step the strings that meet at junctions together (``cablefem.coupled_steps``): their
+    integrators' ``march`` goes through one ``JunctionSteps``; None without junctions."""
+    ends = junction_ends(scene.lines, scene.points, scene.bodies)
+    if not ends:
+        return None
+    from .coupled_steps import JunctionSteps
+
+    members = sorted({k for pairs in ends.values() for k, _ in pairs})
+    index = {k: i for i, k in enumerate(members)}
+    return JunctionSteps([integrators[k] for k in members],
+                         {name: [(index[k], end) for k, end in pairs] for name, pairs in ends.items()},
+                         scene.solver.tolerance)
 
 
 #: largest rho_inf of generalised-alpha that stayed bounded on a stiff taut line at omega dt >> 1
@@ -152,11 +180,12 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
             raise write_failure(error, seabed_vtu) from None
         integrator_class = INTEGRATORS[solver.integrator]
         options = integrator_options(solver)
-        systems = [build_system(scene, line) for line in scene.lines]
+        systems = [build_system(scene, line) for line in dynamic_lines(scene)]
         states, summary["static_newton_iterations"] = start_states(scene, systems=systems)
         integrators += [integrator_class(system, X0, boundary_path(scene, line), dt=dt,
                                          anchor=anchor_path(scene, line), **options)
                         for system, line, X0 in zip(systems, scene.lines, states)]
+        junction_steps(scene, integrators)
         outputs["frames"] = TimeSeriesWriter(out_dir, scene.name)
         outputs["table"] = RowsFile(inside(out_dir, "tensions.csv"), _columns(scene, tracker.network))
         outputs["bar"] = _progress(progress, duration)

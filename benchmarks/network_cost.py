@@ -1,0 +1,89 @@
+"""What a junction costs a run (issue 18): a crowfoot, one line from a moving platform to a free
+point carrying a clump, two legs from there to anchors (the junction joins three line ends), run
+with ``cablefem.coupled_steps.JunctionSteps``, against each of its lines alone (its junction end
+fixed where the statics put it, the compiled BDF2 march of one line). Wall time per simulated
+second, the runs alternated and repeated in one process, medians; prints a table.
+
+    python benchmarks/network_cost.py [--repeats 3] [--duration 20]
+"""
+
+import argparse
+import statistics
+import time
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from cablefem.dynamics import INTEGRATORS
+from cablefem.io import load_scene
+from cablefem.network import Point, dynamic_lines
+from cablefem.run import anchor_path, boundary_path, build_system, junction_steps, start_states
+from cablefem.schemes import integrator_options
+
+SCENE = Path(__file__).with_name("crowfoot.toml")
+
+
+def network_run(scene, duration):
+    """Wall time [s] of ``duration`` simulated seconds of the whole network, and its Newton iterations."""
+    systems = [build_system(scene, line) for line in dynamic_lines(scene)]
+    states, _ = start_states(scene, systems=systems)
+    options = integrator_options(scene.solver)
+    integrators = [INTEGRATORS["bdf2"](s, X, boundary_path(scene, line), dt=scene.solver.dt,
+                                       anchor=anchor_path(scene, line), **options)
+                   for s, line, X in zip(systems, scene.lines, states)]
+    group = junction_steps(scene, integrators)
+    times = np.arange(1, int(round(duration / scene.solver.dt)) + 1) * scene.solver.dt
+    start = time.perf_counter()
+    for integ in integrators:
+        integ.march(times)
+    return time.perf_counter() - start, group.newton_iterations, states
+
+
+def alone_run(scene, k, X0, duration):
+    """Wall time [s] of line k alone: the junction made a fixed point where the statics put it
+    (the compiled march of one line)."""
+    line = scene.lines[k]
+    points = {}
+    for name, row in zip(line.ends, (0, -1)):
+        point = scene.points[name]
+        points[name] = point if point.kind != "free" else Point(name, "fixed", X0[row])
+    vertices = X0[:len(line.node_arc_lengths())]
+    lone = replace(scene, lines=(replace(line, prescribed=(True, True)).with_ends(vertices[0], vertices[-1]),),
+                   points=points)
+    system = build_system(lone, lone.lines[0])
+    (X,), _ = start_states(lone, systems=[system])
+    integ = INTEGRATORS["bdf2"](system, X, boundary_path(lone, lone.lines[0]), dt=scene.solver.dt,
+                                anchor=anchor_path(lone, lone.lines[0]), **integrator_options(scene.solver))
+    times = np.arange(1, int(round(duration / scene.solver.dt)) + 1) * scene.solver.dt
+    start = time.perf_counter()
+    integ.march(times)
+    return time.perf_counter() - start
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--duration", type=float, default=20.0)
+    args = parser.parse_args()
+    scene = load_scene(SCENE)
+    network_run(scene, 1.0)  # compile and warm
+    rows = {"network": [], **{line.name: [] for line in scene.lines}}
+    iterations = 0
+    for _ in range(args.repeats):
+        wall, iterations, states = network_run(scene, args.duration)
+        rows["network"].append(wall / args.duration)
+        for k, line in enumerate(scene.lines):
+            rows[line.name].append(alone_run(scene, k, states[k], args.duration) / args.duration)
+    median = {name: statistics.median(values) for name, values in rows.items()}
+    alone = [median[line.name] for line in scene.lines]
+    print(f"{'run':<12} {'wall per simulated s':>21}")
+    for name, value in median.items():
+        print(f"{name:<12} {value:21.4f}")
+    print(f"network / its costliest line alone: {median['network'] / max(alone):.2f}")
+    print(f"network / its lines alone, summed:  {median['network'] / sum(alone):.2f}")
+    print(f"junction Newton iterations per step: {iterations / (args.duration / scene.solver.dt):.2f}")
+
+
+if __name__ == "__main__":
+    main()

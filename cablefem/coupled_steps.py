@@ -1,0 +1,217 @@
+"""BDF2 steps of the strings that meet at junction points, solved together (issue 18).
+
+A junction is a free point where three or more string ends meet (``cablefem.network``). Each
+string keeps its own BDF2 integrator with the junction end as one of its unknowns (``Line.
+prescribed`` False there), its own banded tangent and LU; the junction's mass, added mass,
+weight, buoyancy and drag ride on one of its strings as a ``Joint`` at that end vertex. A step is
+one Newton iteration over all of them at once, with the strings condensed onto the junctions:
+
+- each string factorises its band K (as a line alone does) and solves K y = -r for its own
+  Newton step and K Z = P_E for the columns of its junction ends E;
+- the end stiffness of the string is S = (Z_E)^-1 = K_EE - K_Ei K_ii^-1 K_iE (the Schur
+  complement, without forming K_ii), and its end rows condensed onto E give -S y_E;
+- at a junction the ends move together: (sum_k S_k) dq = sum_k S_k y_E,k, a 3 x 3 solve;
+- each string then takes dX = y + Z S (dq - y_E), its interior's Newton step with its end at
+  the junction's.
+
+So each Newton iteration costs what the lines cost alone plus three more banded back-
+substitutions per junction end and a 3 x 3 solve per junction; nothing dense or sparse over the
+whole network. Steps that do not converge are halved, as for one line.
+"""
+
+import numpy as np
+
+from .errors import ConvergenceError
+
+
+class JunctionSteps:
+    """The integrators of the strings that end at junctions (BDF2, with the junction ends among
+    their unknowns), stepped together; ``junctions`` {name: [(integrator index, end)]}."""
+
+    def __init__(self, integrators, junctions, tolerance, max_iterations=12, min_dt=None):
+        self.integrators = integrators
+        self.junctions = junctions
+        self.tolerance = tolerance
+        self.max_iterations = max_iterations
+        self.min_dt = min_dt or integrators[0].dt / 1024.0
+        self.scale = sum(integ.scale for integ in integrators)
+        self.newton_iterations = 0
+        self.halvings = 0
+        self.cache = {}  # times[-1] -> forces per integrator, for ``march`` of each member
+        # per integrator: its junction ends as (end, row of the end in the free DOFs, junction)
+        self.ends = [[] for _ in integrators]
+        for name, members in junctions.items():
+            for k, end in members:
+                fem = integrators[k].fem
+                dof = (fem.anchor_dof, fem.fairlead_dof)[end]
+                self.ends[k].append((end, int(np.searchsorted(fem.free_dofs, dof)), name, dof))
+        for k, integ in enumerate(integrators):  # each member marches through the group
+            integ.march = (lambda times, k=k: self.march_member(k, times))
+            # a member alone would accelerate its junction end by the force of the others: at the
+            # start (the network's static equilibrium, at rest) the junction does not move
+            for _, _, _, dof in self.ends[k]:
+                integ.A[dof] = 0.0
+            integ.residual_rows = None
+
+    # ------------------------------------------------------------------ marching
+    def march_member(self, k, times):
+        """Member k's forces (m, 2, 3) on its fairlead and anchor at ``times``: the group marches
+        all members there on the first member's call."""
+        key = float(times[-1])
+        if key not in self.cache:
+            self.cache = {key: self.march(times)}
+        return self.cache[key][k]
+
+    def march(self, times):
+        """Step every member to each of ``times`` in turn; forces (members, m, 2, 3)."""
+        forces = np.empty((len(self.integrators), len(times), 2, 3))
+        for i, t in enumerate(times):
+            try:
+                self.advance(t - self.integrators[0].t)
+            except ConvergenceError as error:
+                error.forces = forces[0, :i]
+                raise
+            for k, integ in enumerate(self.integrators):
+                forces[k, i] = integ.reactions()
+        return forces
+
+    def advance(self, target):
+        """Advance by ``target`` [s] in attempts halved on failure."""
+        done, h = 0.0, target
+        while target - done > 1e-9 * target:
+            h = min(h, target - done)
+            if self.attempt(h):
+                done += h
+                continue
+            self.halvings += 1
+            h *= 0.5
+            if h < self.min_dt:
+                integ = self.integrators[0]
+                raise ConvergenceError(
+                    f"junction steps: Newton did not converge at t = {integ.t:.6g} s even with dt = {2 * h:.3g} s "
+                    f"(tolerance {self.tolerance:g}); try a smaller dt or more elements",
+                    residual=float("nan"), iterations=self.newton_iterations)
+
+    # ------------------------------------------------------------------ one step
+    def attempt(self, h):
+        """One BDF2 step of h of every member, Newton over all at once; True on success."""
+        members = self.integrators
+        saved = [integ.snapshot() for integ in members]
+        for integ in members:
+            integ.targets = integ.ends_at(integ.t + h)
+            integ.begin(h)
+            integ.X1 = integ.guess.copy()
+        self._agree()
+        for _ in range(self.max_iterations):
+            self.newton_iterations += 1
+            for integ in members:
+                integ.newton_iterations += 1
+            parts = [self._linearise(k, integ) for k, integ in enumerate(members)]
+            if any(part is None for part in parts):
+                break
+            dq = self._junction_steps(parts)
+            largest, residual = 0.0, 0.0
+            for k, (integ, (y, Z, S, rows)) in enumerate(zip(members, parts)):
+                step = y.copy()
+                if self.ends[k]:
+                    target = np.concatenate([dq[name] for _, _, name, _ in self.ends[k]])
+                    yE = np.concatenate([y[row] for _, row, _, _ in self.ends[k]])
+                    step += (Z @ (S @ (target - yE))).reshape(-1, 3)
+                integ.X1[integ.fem.free_dofs] += step
+                largest = max(largest, float(np.max(np.abs(step))) / integ.increment_tolerance)
+                residual += float(np.linalg.norm(self._interior(k, rows)))
+            residual += sum(float(np.linalg.norm(self._balance(parts, name))) for name in self.junctions)
+            if residual <= self.tolerance * self.scale or largest <= 1.0:
+                if self._finish(h):
+                    return True
+                break
+        for integ, snapshot in zip(members, saved):
+            integ.restore(snapshot)
+        return False
+
+    def _agree(self):
+        """Put every string end at a junction where the junction's first string predicts it."""
+        for name, members in self.junctions.items():
+            k, end = members[0]
+            first = self.integrators[k]
+            at = first.X1[(first.fem.anchor_dof, first.fem.fairlead_dof)[end]].copy()
+            for k, end in members[1:]:
+                integ = self.integrators[k]
+                integ.X1[(integ.fem.anchor_dof, integ.fem.fairlead_dof)[end]] = at
+
+    def _linearise(self, k, integ):
+        """(y, Z, S, rows) of member k at its trial X1: its own Newton step y (N_free, 3), the
+        columns Z (3 N_free, 3 m) of K^-1 at its junction ends, their end stiffness S (3 m, 3 m)
+        and its residual rows; None if its tangent is singular."""
+        X, V, A = integ.point(integ.X1)
+        v_x, a_x, g_x = integ.factors
+        rows, tangent = integ.rows_and_tangent(X, V, A, integ.t_eval, v_x, a_x, True)
+        integ.njev += 1
+        factors = integ.factorize(tangent, g_x, a_x)
+        if factors is None:
+            return None
+        integ.nlu += 1
+        if not self.ends[k]:
+            return integ.solve(factors, rows), None, None, rows
+        stack = np.zeros((1 + 3 * len(self.ends[k]),) + rows.shape)
+        stack[0] = rows
+        for i, (_, _, _, dof) in enumerate(self.ends[k]):
+            for c in range(3):
+                stack[1 + 3 * i + c, dof, c] = -1.0  # the solve gives -K^-1 rows: K^-1 e
+        if integ.fused is not None:
+            solved = integ.fused.solve_many(factors, stack)
+        else:
+            solved = np.array([integ.solve(factors, part) for part in stack])
+        y = solved[0]
+        Z = solved[1:].reshape(len(solved) - 1, -1).T  # of the matrix the step factorises (g_x K), as y is
+        ZE = np.concatenate([Z[3 * row:3 * row + 3] for _, row, _, _ in self.ends[k]])
+        return y, Z, np.linalg.inv(ZE), rows
+
+    def _junction_steps(self, parts):
+        """The junctions' Newton steps {name: dq (3,)} from sum_k S_k (dq_E - y_E,k) = 0 over the
+        string ends (a string between two junctions couples them: one solve of 3 per junction)."""
+        names = list(self.junctions)
+        where = {name: 3 * i for i, name in enumerate(names)}
+        A, b = np.zeros((3 * len(names),) * 2), np.zeros(3 * len(names))
+        for k, ends in enumerate(self.ends):
+            if not ends:
+                continue
+            y, _, S, _ = parts[k]
+            for i, (_, _, name_i, _) in enumerate(ends):
+                for j, (_, row_j, name_j, _) in enumerate(ends):
+                    block = S[3 * i:3 * i + 3, 3 * j:3 * j + 3]
+                    A[where[name_i]:where[name_i] + 3, where[name_j]:where[name_j] + 3] += block
+                    b[where[name_i]:where[name_i] + 3] += block @ y[row_j]
+        dq = np.linalg.solve(A, b)
+        return {name: dq[where[name]:where[name] + 3] for name in names}
+
+    def _index(self, k, end):
+        return [e for e, _, _, _ in self.ends[k]].index(end)
+
+    def _interior(self, k, rows):
+        """Member k's residual rows but its junction ends (those are the balance's)."""
+        free = self.integrators[k].fem.free_dofs
+        keep = np.ones(len(free), dtype=bool)
+        for _, row, _, _ in self.ends[k]:
+            keep[row] = False
+        return rows[free[keep]]
+
+    def _balance(self, parts, name):
+        """The junction's residual: the sum of its string ends' rows."""
+        return sum(parts[k][3][self.ends[k][self._index(k, end)][3]] for k, end in self.junctions[name])
+
+    def _finish(self, h):
+        """Accept the step of every member at its X1 (its rows evaluated there); False if one is
+        not finite."""
+        for integ in self.integrators:
+            X, V, A = integ.point(integ.X1)
+            v_x, a_x, _ = integ.factors
+            rows, _ = integ.rows_and_tangent(X, V, A, integ.t_eval, v_x, a_x, False)
+            if not np.all(np.isfinite(rows)):
+                return False
+            integ.rows = rows
+        for integ in self.integrators:
+            integ.accept(h)
+            integ.system.commit_history()
+            integ.steps += 1
+        return True

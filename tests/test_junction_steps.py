@@ -1,0 +1,122 @@
+"""Dynamics of strings that meet at a junction (issue 18, ``cablefem.coupled_steps``): at rest from
+the network's statics nothing moves, every accepted step solves the coupled equations (each
+string's interior and the junction's balance), and the compiled evaluation gives the numpy path's
+numbers."""
+
+import numpy as np
+import pytest
+
+from cablefem.dynamics import INTEGRATORS
+from cablefem.io import load_scene
+from cablefem.network import dynamic_lines
+from cablefem.run import anchor_path, boundary_path, build_system, junction_steps, start_states
+from cablefem.schemes import integrator_options
+
+CROWFOOT = """\
+name = "crowfoot"
+[line_types.chain]
+diameter = 0.1
+mass = 60.0
+EA = 5e8
+damping = 0.01
+Cd_normal = 1.2
+Ca_normal = 1.0
+Cd_tangential = 0.4
+[points.f]
+kind = "coupled"
+position = [-10.0, 0.0, -10.0]
+[points.j]
+kind = "free"
+position = [-160.0, 0.0, -80.0]
+mass = 2000.0
+volume = 1.0
+CdA = 2.0
+Ca = 1.0
+[points.a1]
+kind = "fixed"
+position = [-400.0, 150.0, -180.0]
+[points.a2]
+kind = "fixed"
+position = [-400.0, -150.0, -180.0]
+[[lines]]
+name = "upper"
+anchor = "j"
+fairlead = "f"
+segments = [{ type = "chain", length = 185.0, elements = 8 }]
+[[lines]]
+name = "leg1"
+anchor = "a1"
+fairlead = "j"
+segments = [{ type = "chain", length = 320.0, elements = 10 }]
+[[lines]]
+name = "leg2"
+anchor = "a2"
+fairlead = "j"
+segments = [{ type = "chain", length = 320.0, elements = 12 }]
+[seabed]
+kind = "horizontal"
+depth = 1000.0
+[solver]
+dt = 0.05
+"""
+SURGE = """
+[motion]
+kind = "harmonic"
+amplitude = [4.0, 1.0, 1.0]
+period = 8.0
+ramp = 4.0
+"""
+
+
+def start(tmp_path, text, compiled=True):
+    path = tmp_path / "crowfoot.toml"
+    path.write_text(text)
+    scene = load_scene(path)
+    systems = [build_system(scene, line) for line in dynamic_lines(scene)]
+    states, _ = start_states(scene, systems=systems)
+    options = {**integrator_options(scene.solver), "compiled": compiled}
+    integrators = [INTEGRATORS["bdf2"](s, X, boundary_path(scene, line), dt=scene.solver.dt,
+                                       anchor=anchor_path(scene, line), **options)
+                   for s, line, X in zip(systems, scene.lines, states)]
+    return scene, integrators, junction_steps(scene, integrators), states
+
+
+def march(integrators, duration, dt=0.05):
+    times = np.arange(1, int(round(duration / dt)) + 1) * dt
+    return np.array([integ.march(times) for integ in integrators])
+
+
+def test_at_rest_from_the_network_statics_nothing_moves(tmp_path):
+    """The junction's weight, buoyancy and the strings' ends balance in statics as in dynamics."""
+    _, integrators, _, states = start(tmp_path, CROWFOOT)
+    march(integrators, 2.0)
+    for integ, X0 in zip(integrators, states):
+        assert np.abs(integ.X - X0).max() < 1e-6
+
+
+def test_every_step_solves_the_coupled_equations(tmp_path):
+    """Under a surging fairlead: at the end of the run each string's interior rows and the
+    junction's balance (the sum of the strings' end rows) are below the tolerance's force; the
+    junction has moved and the strings' ends there agree."""
+    scene, integrators, group, states = start(tmp_path, CROWFOOT + SURGE)
+    march(integrators, 6.0)
+    balance, interior = np.zeros(3), 0.0
+    for k, integ in enumerate(integrators):
+        rows, _ = integ.rows_and_tangent(*integ.point(integ.X), integ.t, *integ.factors[:2], False)
+        free = integ.fem.free_dofs
+        ends = [dof for _, _, _, dof in group.ends[k]]
+        interior = max(interior, float(np.abs(rows[np.setdiff1d(free, ends)]).max()))
+        balance += sum(rows[dof] for dof in ends)
+    scale = group.scale
+    assert interior <= 1e-6 * scale and np.abs(balance).max() <= 1e-6 * scale
+    at = [integ.X[(integ.fem.anchor_dof, integ.fem.fairlead_dof)[end]] for k, integ in enumerate(integrators)
+          for end, _, name, _ in group.ends[k]]
+    assert np.abs(np.array(at) - at[0]).max() < 1e-12
+    assert np.linalg.norm(at[0] - states[0][0]) > 0.1  # the junction moved
+    assert group.halvings == 0
+
+
+@pytest.mark.parametrize("duration", [4.0])
+def test_compiled_and_numpy_paths_give_the_same_junction_steps(tmp_path, duration):
+    forces = [march(start(tmp_path, CROWFOOT + SURGE, compiled)[1], duration) for compiled in (True, False)]
+    np.testing.assert_allclose(forces[0], forces[1], rtol=0, atol=1e-7 * np.abs(forces[1]).max())
