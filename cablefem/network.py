@@ -448,3 +448,30 @@ class NetworkRows:
             k = int(np.argmax(size))
             if f"{name}_max" not in entry or size[k] > entry[f"{name}_max"]:
                 entry[f"{name}_max"], entry[f"{name}_max_t"] = float(size[k]), float(times[k])
+
+
+def frame_marks(scene):
+    """Where a run's frames draw the network (``cablefem.io.vtk.polyline_mesh``): its named
+    points as (line index, vertex index) and its bodies as (name, [(line index, vertex index)])
+    of their points; a vertex k of a line is row k * order of its frame's points."""
+    rows, points = {}, []
+    for k, line in enumerate(scene.lines):
+        vertices = np.concatenate([[0], np.cumsum([seg.elements for seg in line.segments])])
+        named = [(name, vertices[0 if e == 0 else -1]) for e, name in enumerate(line.ends) if name is not None]
+        named += [(joint.name, vertices[b]) for b, joint in line.joints if joint.name in scene.points]
+        for name, vertex in named:
+            if name not in rows:
+                rows[name] = (k, int(vertex) * line.order)
+                points.append(rows[name])
+    bodies = [(name, [rows[p] for p, point in scene.points.items() if point.body == name and p in rows])
+              for name in sorted(scene.bodies)]
+    return points, [(name, marks) for name, marks in bodies if marks]
+
+
+def body_reference(body, t):
+    """Where a body's reference point is at time t [m]: at rest, or moved by its motion."""
+    if body.kind == "coupled" and body.motion is not None:
+        from .motion import body_motion
+
+        return body.position + body_motion(body.motion, t)[0][:3]
+    return body.position.copy()

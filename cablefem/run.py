@@ -23,7 +23,8 @@ from .io.output import (RowsFile, deferred_signals, failure as write_failure, in
                         remove_partials, write_atomic)
 from .io.vtk import TimeSeriesWriter, polyline_mesh
 from .motion import fairlead_motion
-from .network import NetworkRows, check_no_coupling, coupling, dynamic_lines, junction_ends, line_paths
+from .network import (NetworkRows, body_reference, check_no_coupling, coupling, dynamic_lines, frame_marks,
+                      junction_ends, line_paths)
 from .results import LineSampler, line_fields
 from .statics import solve_static
 from .system import LineSystem
@@ -209,6 +210,7 @@ def _advance(scene, integrators, outputs, step_control, tracker, duration, dt):
     anyway), so that the rows and frames always hold every step taken."""
     solver, frames, table, bar = scene.solver, outputs["frames"], outputs["table"], outputs["bar"]
     samplers = [LineSampler(integ.system) for integ in integrators]  # the frames' points, once
+    marks, body_marks = frame_marks(scene)
     every = scene.output.every if solver.adaptive else max(scene.output.every, dt)
     near = 1e-6 * dt  # times closer than this are the same time
     frame = 0  # frames fall at frame * every, not at a sum of steps carrying round-off
@@ -219,8 +221,9 @@ def _advance(scene, integrators, outputs, step_control, tracker, duration, dt):
         table.write(tracker.rows(rows))
         t = rows[-1][0]
         if t >= frame * every - near:
+            bodies = [(body_reference(scene.bodies[name], t), rows) for name, rows in body_marks]
             frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V, sampler=sampler)
-                                           for i, sampler in zip(integrators, samplers)]))
+                                           for i, sampler in zip(integrators, samplers)], marks, bodies))
             frame = int(np.floor((t + near) / every)) + 1
         return t
 

@@ -258,3 +258,15 @@ every = 3.0
     assert extremes["body:platform"]["moment_max"] == pytest.approx(np.linalg.norm(body[:, 3:], axis=1).max(), rel=1e-8)
     assert extremes["point:f1"]["force_max"] == pytest.approx(np.linalg.norm(f1, axis=1).max(), rel=1e-8)
     assert summary["completed"]
+    import meshio
+
+    from cablefem.network import body_reference
+
+    frame = meshio.read(sorted((tmp_path / "out").glob("net_*.vtu"))[-1])  # at t = 3 s
+    kinds = np.concatenate(frame.cell_data["network"])
+    cells = np.concatenate([block.data[:, 0] for block in frame.cells])  # each cell's first point
+    assert (kinds == 1).sum() == len(scene.points)  # a vertex at every named point
+    reference = frame.points[cells[kinds == 2]]  # the body's segments start at its reference point
+    np.testing.assert_allclose(reference, np.broadcast_to(body_reference(scene.bodies["platform"], 3.0), reference.shape),
+                               atol=1e-9)
+    assert len(reference) == 2  # to its two points

@@ -20,27 +20,51 @@ from .output import GrowingFile, inside, replace_into, write_atomic
 __all__ = ["TimeSeriesWriter", "polyline_mesh", "read_collection", "write_atomic"]
 
 
-def polyline_mesh(lines):
-    """A meshio mesh of several polylines.
+def polyline_mesh(lines, points=(), bodies=()):
+    """A meshio mesh of several polylines, with a network's points and bodies.
 
     lines: list of dicts with "points" (m, 3) and point-data arrays of length m; the cells are
     the segments between consecutive points, with cell data "line" (index of the line).
+    points: (line index, row) of the network's named points, each a "vertex" cell on that row of
+    its line; bodies: (reference point (3,), [(line index, row)]) of each body, drawn as segments
+    from its reference point (a point added, its point data zero) to the rows where its points
+    are. Cell data "network": 0 for a line's segments, 1 for a point, 2 for a body's segments
+    ("line" is -1 on a body's).
     """
-    points, cells, line_index, data = [], [], [], {}
-    offset = 0
+    coordinates, cells, line_index, data = [], [], [], {}
+    offset, starts = 0, []
     for k, line in enumerate(lines):
         p = np.asarray(line["points"], dtype=float)
         m = len(p)
-        points.append(p)
+        coordinates.append(p)
         cells.append(np.column_stack([np.arange(m - 1), np.arange(1, m)]) + offset)
         line_index.append(np.full(m - 1, k))
         for key, value in line.items():
             if key != "points":
                 data.setdefault(key, []).append(np.asarray(value, dtype=float))
+        starts.append(offset)
         offset += m
+    at = [starts[k] + (row % len(lines[k]["points"])) for k, row in points]
+    edges = []
+    for reference, attached in bodies:
+        coordinates.append(np.asarray(reference, dtype=float)[None])
+        for key, values in data.items():
+            values.append(np.zeros((1,) + values[0].shape[1:]))
+        edges += [[offset, starts[k] + (row % len(lines[k]["points"]))] for k, row in attached]
+        offset += 1
     point_data = {key: np.concatenate(values) for key, values in data.items()}
-    return meshio.Mesh(np.concatenate(points), [("line", np.concatenate(cells))],
-                       point_data=point_data, cell_data={"line": [np.concatenate(line_index)]})
+    blocks = [("line", np.concatenate(cells))]
+    cell_lines, kinds = [np.concatenate(line_index)], [np.zeros(len(blocks[0][1]), dtype=int)]
+    if at:
+        blocks.append(("vertex", np.array(at)[:, None]))
+        cell_lines.append(np.array([k for k, _ in points]))
+        kinds.append(np.ones(len(at), dtype=int))
+    if edges:
+        blocks.append(("line", np.array(edges)))
+        cell_lines.append(np.full(len(edges), -1))
+        kinds.append(np.full(len(edges), 2))
+    return meshio.Mesh(np.concatenate(coordinates), blocks, point_data=point_data,
+                       cell_data={"line": cell_lines, "network": kinds})
 
 
 class TimeSeriesWriter:
