@@ -14,8 +14,10 @@ import hashlib
 from pathlib import Path
 
 #: the sources of the compiled kernels and of the constants compiled into them
-PATTERNS = ("kernels.py", "march.py", "policy.py", "banded.py", "loads/*.py", "geometry/_vertex_normal_jit.py",
-            "geometry/grid.py", "geometry/triangulated.py")  # every load of the catalog, whatever its file
+PATTERNS = ("kernels.py", "march.py", "policy.py", "banded.py",
+            "loads/*.py",  # every load of the catalog, whatever its file
+            "geometry/_vertex_normal_jit.py", "geometry/_walk_jit.py", "geometry/grid.py",
+            "geometry/_vertex_normal.py", "geometry/_search.py")  # INSIDE_TOLERANCE, WALK_STEPS
 KERNEL_SOURCES = tuple(sorted(str(path.relative_to(Path(__file__).parent)) for pattern in PATTERNS
                               for path in Path(__file__).parent.glob(pattern)))
 STAMP = "kernels.sha256"

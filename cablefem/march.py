@@ -14,7 +14,7 @@ y' ~ c0 y_{n+1} + c1 y_n + c2 y_{n-1} on X and V). The banded LU is ``cablefem.b
 
 The seabed is projected in the loop too: a plane by the kernel itself, a ``DepthGrid`` by its
 compiled bilinear projection, a ``TriangulatedSurface`` by its compiled walk
-(``_vertex_normal_jit.project``), which starts where the seabed's last call for these points ended
+(``geometry._walk_jit.project``), which starts where the seabed's last call for these points ended
 and hands its last call back. When the walk cannot place a point (it moved beyond its triangle's
 neighbours), the loop stops and that step goes on in Python, whose search finds it.
 """
@@ -26,9 +26,9 @@ from numba import njit
 
 from . import kernels, policy
 from .banded import lu_factor, lu_solve
-from .geometry import _vertex_normal_jit as walk
+from .geometry import _walk_jit as walk
 from .geometry.grid import _project as _grid_project
-from .geometry.triangulated import WALK_STEPS
+from .geometry._search import WALK_STEPS
 
 #: seabeds the loop projects itself: a plane (in the kernel), a depth grid, a triangulated surface
 PLANE, GRID, TRIANGULATED = 0, 1, 2
@@ -38,9 +38,10 @@ DEPTH = 3
 FRACTIONS = 2 ** DEPTH
 
 #: the seabed's projection in the loop: kind, a grid's axes and depths, a triangulated surface's
-#: tables and the walk's warm start, and scratch (triangles, heights, points, packed outputs)
-Projector = namedtuple("Projector", "kind gx gy gz rows across safe size typical origin start unheld start_h "
-                                    "triangle sth xyz out")
+#: tables (``walk.Surface``) and typical triangle size [m], the walk's warm start (``walk.Start``),
+#: and scratch: what the walk finds with the packed outputs (``walk.Result``; a grid's outputs in
+#: its ``out``) and the points (3, n)
+Projector = namedtuple("Projector", "kind gx gy gz surface typical start result xyz")
 #: a run's clock (one record): t [s], the step before (0 at the start), the last step (0 if none), the
 #: attempt that stopped the run, the last attempt's final relative residual, the attempt's c0
 CLOCK = np.dtype([("t", "f8"), ("h_before", "f8"), ("last_h", "f8"), ("stopped", "f8"), ("residual", "f8"),
@@ -99,7 +100,7 @@ def _project(proj, X1, mesh, bed, derivatives):
     and normal gradient (nel, nq, 3, 3), as ``FusedEvaluator.bed`` does through ``Seabed.project``;
     the walk's warm start moves on to this call. Returns the number of points the walk did not
     place (-1: moved too far)."""
-    dofs, phi, xyz, out = mesh.dofs, mesh.phi, proj.xyz, proj.out
+    dofs, phi, xyz, out = mesh.dofs, mesh.phi, proj.xyz, proj.result.out
     nel, nloc = dofs.shape
     nq = phi.shape[2]
     for e in range(nel):
@@ -114,17 +115,17 @@ def _project(proj, X1, mesh, bed, derivatives):
         _grid_project(xyz, proj.gx, proj.gy, proj.gz, policy.FLAG[1], out)
     else:
         mode = walk.EVERYTHING if derivatives else walk.GAP_AND_DIRECTION
-        lost = walk.project(xyz, proj.origin, proj.start, proj.start_h, proj.unheld, proj.rows, proj.across,
-                            proj.safe, proj.size, proj.typical, WALK_STEPS, policy.FLAG[1], mode, proj.triangle, proj.sth,
-                            out)
+        lost = walk.project(xyz, proj.surface, proj.start, proj.typical, WALK_STEPS, policy.FLAG[1], mode,
+                            proj.result)
         if lost != 0:
             return lost
+        start, result = proj.start, proj.result
         for p in range(xyz.shape[1]):  # the next call starts here (loops: no temporary copies)
             for a in range(3):
-                proj.origin[a, p] = xyz[a, p]
-            proj.start[p] = proj.triangle[p]
-            proj.start_h[p] = proj.sth[2, p]
-            proj.unheld[p] = False
+                start.origin[a, p] = xyz[a, p]
+            start.triangle[p] = result.triangle[p]
+            start.h[p] = result.sth[2, p]
+            start.unheld[p] = False
     for e in range(nel):
         for g in range(nq):
             p = e * nq + g

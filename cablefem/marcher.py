@@ -6,7 +6,7 @@ import numpy as np
 
 from . import kernels, policy
 from .geometry import DepthGrid, TriangulatedSurface
-from .geometry import _vertex_normal_jit as walk
+from .geometry import _walk_jit as walk
 from .march import CLOCK, FACTORS, FRACTIONS, GRID, PLANE, STEPS, TRIANGULATED, Problem, Projector, attempt
 
 
@@ -71,12 +71,12 @@ class Marcher:
         zero1, zero2 = np.zeros(1), np.zeros((1, 1))
         grid = (self.seabed.x, self.seabed.y, self.seabed.z) if self.kind == GRID else (zero1, zero1, zero2)
         if self.kind == TRIANGULATED:
-            walker = self.seabed.walk_start(self.rule.interpolate(X)[0])
+            surface, typical, start = self.seabed.walk_start(self.rule.interpolate(X)[0])
         else:  # unused, typed as the walk's own
-            walker = (zero2, np.zeros((1, 3), dtype=np.int64), zero1, zero1, 0.0, np.zeros((3, n)),
-                      np.zeros(n, dtype=np.int64), np.zeros(n, dtype=bool), np.zeros(n))
-        return Projector(self.kind, *grid, *walker, np.zeros(n, dtype=np.int64), np.zeros((3, n)), np.zeros((3, n)),
-                         np.zeros((walk.OUTPUTS, n)))
+            surface, typical = walk.Surface(zero2, np.zeros((1, 3), dtype=np.int64), zero1, zero1), 0.0
+            start = walk.Start(np.zeros((3, n)), np.zeros(n, dtype=np.int64), np.zeros(n), np.zeros(n, dtype=bool))
+        result = walk.Result(np.zeros(n, dtype=np.int64), np.zeros((3, n)), np.zeros((walk.OUTPUTS, n)))
+        return Projector(self.kind, *grid, surface, typical, start, result, np.zeros((3, n)))
 
     def problem(self, integ, ends, fractions):
         """The ``Problem`` of ``integ``'s current state, the anchor and fairlead at the ends of the
@@ -101,7 +101,7 @@ class Marcher:
         counters, clock = prob.counters, prob.clock[0]
         integ.full_steps_left = float(self.factors["auto_left"][0])
         if self.kind == TRIANGULATED and counters[policy.NFEV]:  # the walk's last call: the next one starts there
-            self.seabed.walk_end(prob.projector.origin, prob.projector.start, prob.projector.start_h)
+            self.seabed.walk_end(prob.projector.start)
         integ.counters += counters
         integ.last_residual = float(clock["residual"])
         if clock["t"] != integ.t:

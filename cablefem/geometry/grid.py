@@ -68,7 +68,7 @@ def _cell(axis, value):
 def _project(xyz, x, y, z, derivatives, out):
     """``DepthGrid.project`` (or, without ``derivatives``, ``gap_only``) of points xyz (3, n) [m]
     into out (19, n): the gap, direction (3), closest point (3), gap gradient (3) and direction
-    gradient (3 x 3, row a at 3 a), as ``_vertex_normal_jit.project`` packs them."""
+    gradient (3 x 3, row a at 3 a), as ``_walk_jit.project`` packs them."""
     for k in range(xyz.shape[1]):
         i, u, hx, in_x = _cell(x, xyz[0, k])
         j, v, hy, in_y = _cell(y, xyz[1, k])
