@@ -3,6 +3,7 @@ line ends that name a point (docs/scene.md, "Networks"; ``cablefem.network``).""
 
 import math
 import re
+from dataclasses import replace
 
 import numpy as np
 
@@ -82,6 +83,26 @@ def read_bodies(raw, folder):
             bodies[name] = Body(name, **values)
         except InputError as error:
             raise error.within(prefix=prefix) from None
+    return bodies
+
+
+def body_motions(raw, bodies, folder):
+    """The bodies of a MoorDyn file (``bodies`` by name: ``body1``, ...) with the motions a TOML that
+    wraps it gives its coupled ones: [bodies.NAME] there holds ``motion`` only."""
+    bodies = dict(bodies)
+    for name, entry in _names(raw, "bodies"):
+        prefix = f"bodies.{name}"
+        if name not in bodies:
+            raise InputError(f"no body '{name}'{v.suggest(name, bodies)} in the MoorDyn file "
+                             f"(its bodies: {', '.join(bodies) or 'none'})", key=prefix)
+        v.check_keys(entry, {"motion": None}, prefix, required=("motion",),
+                     elsewhere={key: "the MoorDyn file gives it; with [moordyn], [bodies.NAME] holds motion "
+                                "only" for key in BODY_KEYS})
+        if bodies[name].kind != "coupled":
+            raise InputError(f"only a coupled body has a motion (this one is {bodies[name].kind})",
+                             key=f"{prefix}.motion")
+        bodies[name] = replace(bodies[name], motion=_body_motion(v.table(entry["motion"], f"{prefix}.motion"),
+                                                                f"{prefix}.motion", folder))
     return bodies
 
 
