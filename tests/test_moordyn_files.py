@@ -165,3 +165,13 @@ def test_a_toml_gives_the_files_coupled_body_a_motion_and_the_current_a_profile(
         with pytest.raises(InputError) as error:
             load_scene(scene_file)
         assert f"{key}: " in error.value.message() and reason in error.value.message(), error.value.message()
+
+
+def test_the_one_list_of_refusals_is_the_table_in_the_docs():
+    """docs/scene.md "What stays refused" holds every row of moordyn_sections.REFUSED as written there."""
+    from cablefem.io.moordyn_sections import REFUSED
+
+    with open(os.path.join(DATA, "..", "..", "..", "docs", "scene.md"), encoding="utf-8") as handle:
+        docs = handle.read()
+    for what, instead in REFUSED.values():
+        assert f"| {what.replace('|', chr(92) + '|')} | {instead} |" in docs, what
