@@ -1,12 +1,13 @@
 """MoorDyn's own input files (tests/data/moordyn, copied from MoorDyn's repository) read as a MoorDyn
 user would: each into the network it describes (points, bodies, strings and their kinds); the ones
-whose strings end at fixed, coupled and body points solve in statics; the ones with junctions or
-free bodies read, and are refused only where their coupled solve is missing
+whose strings end at fixed, coupled and body points solve in statics, and a free body too; the ones
+with junctions or free bodies read, and a run refuses them only where its steps are missing
 (``network.check_no_coupling``). Also: MoorDyn-C's v1 LINE TYPES layout read by position, the
 Currents option and [environment] current_profile, body motions given by a TOML that wraps a file."""
 
 import json
 import os
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -90,10 +91,11 @@ def test_a_riser_between_two_fixed_points_in_a_current_profile(tmp_path, capsys)
     np.testing.assert_allclose([entry["nodes"][0], entry["nodes"][-1]], [[-21.0425, 0, -10], [0, 0, -1]], atol=1e-9)
 
 
-def test_lines_meeting_at_free_points_read_and_are_refused_only_where_their_solve_is_missing():
+def test_lines_meeting_at_free_points_read_into_strings_and_a_junction():
     """tripod.txt: eleven lines, free points joining two line ends become joints of four strings
     (nodeTether + nodeFloat up to a free end, three anchor legs of three lines each), and point 3,
-    where four string ends meet, is a junction: read, and refused by check_no_coupling."""
+    where four string ends meet, is a junction: a run takes it with BDF2 at fixed steps only
+    (check_no_coupling refuses generalised-alpha, one line)."""
     scene = load_scene(data("tripod.txt"))
     assert sorted(line.name for line in scene.lines) == ["line11+10+9", "line2+1", "line5+4+3", "line8+7+6"]
     points, bodies = kinds(scene)
@@ -101,13 +103,16 @@ def test_lines_meeting_at_free_points_read_and_are_refused_only_where_their_solv
     assert coupling(scene.lines, scene.points, scene.bodies) == (["point3"], [])
     legs = [line for line in scene.lines if line.name != "line2+1"]
     assert all(line.ends[1] == "point3" and line.prescribed == (True, False) for line in legs)
-    with pytest.raises(InputError, match="point 'point3' \\(a junction of lines\\).*not solved yet"):
+    check_no_coupling(scene)  # BDF2 at fixed steps, the default: runs
+    scene.solver = replace(scene.solver, integrator="generalized-alpha")
+    with pytest.raises(InputError, match="point 'point3' joins three or more lines"):
         check_no_coupling(scene)
 
 
-def test_a_free_body_reads_and_is_refused_only_where_its_solve_is_missing(tmp_path):
+def test_a_free_body_reads_solves_in_statics_and_is_refused_only_in_a_run(tmp_path, capsys):
     """lines_body.txt with its body made free (mass, inertia, volume): read with MoorDyn's CG (one
-    number: its z) and inertia (one number: all three), refused by check_no_coupling."""
+    number: its z) and inertia (one number: all three); `cablefem static` finds where the hanging
+    chain's pull balances its net buoyancy (rho V - M) g (1e-6); a run refuses it (check_no_coupling)."""
     text = open(data("lines_body.txt"), encoding="utf-8").read()
     row = "1    Coupled     0.0    0.0   -35   0       0      0      0     -35      0        0       0      0"
     path = tmp_path / "free_body.txt"
@@ -121,6 +126,9 @@ def test_a_free_body_reads_and_is_refused_only_where_its_solve_is_missing(tmp_pa
     assert coupling(scene.lines, scene.points, scene.bodies)[1] == ["body1"]
     with pytest.raises(InputError, match="body 'body1' \\(free\\).*not solved yet"):
         check_no_coupling(scene)
+    solved = static_json(path, tmp_path, capsys)["bodies"]["body1"]
+    net_buoyancy = (1025.0 * 2000.0 - 2e6) * 9.80665
+    np.testing.assert_allclose(solved["force"], [0.0, 0.0, -net_buoyancy], rtol=0, atol=1e-6 * net_buoyancy)
 
 
 def test_rods_and_v1_line_types_of_a_moordyn_file_refused_with_what_to_do():

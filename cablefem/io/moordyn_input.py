@@ -12,8 +12,8 @@ Mapping (each conversion checked against the MoorDyn 2.7 library, docs/scene.md)
 - BODIES and POINTS become ``cablefem.network`` Bodies and Points (``moordyn_network``), each
   MoorDyn line a ``Line`` between two of them; ``network.strings`` joins lines through free points
   that join exactly two line ends into ONE multi-segment line named ``line1+2``, its most fixed end
-  first. Junctions of three or more line ends and free bodies are read, and refused at solve time
-  (``network.check_no_coupling``) until the coupled solver exists;
+  first. Junctions of three or more line ends and free bodies are read as they are: the statics
+  solve them (``cablefem.coupling``), a run refuses what it cannot step (``network.check_no_coupling``);
 - ``Currents 1``: the steady profile of ``current_profile.txt`` beside the file (``io.currents``);
 - BA >= 0 is the internal damping coefficient [N s]: beta = BA / EA [s];
   BA < 0 is -zeta, MoorDyn's BA = zeta (UnstrLen / NumSegs) sqrt(EA m);
