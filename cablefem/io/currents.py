@@ -28,11 +28,7 @@ _HEIGHT = v.limited(v.number, "coordinate")
 def read_current_profile(path, key):
     """The CurrentProfile in a current_profile.txt at ``path``; errors name ``key`` and the file's line."""
     name = os.path.basename(path)
-    try:
-        with open(path, encoding="utf-8") as handle:
-            rows = handle.read().splitlines()
-    except (OSError, UnicodeDecodeError) as error:
-        raise InputError(f"cannot read {path}: {v.one_line(error)}", key=key) from None
+    rows = v.read_rows(path, key)
     for number, row in enumerate(rows[:HEADER_LINES], start=1):
         if row.split() and all(parse_number(f) is not None for f in row.split()):
             raise InputError(f"{name} line {number}: holds numbers, but the first {HEADER_LINES} lines are a "

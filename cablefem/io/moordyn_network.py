@@ -65,16 +65,22 @@ def _split(token, count, number, key, check):
     return [value(part, number, key, check) for part in parts]
 
 
+def _row_id(section, what, number, fields, seen):
+    """The key (``BODIES.1``) and the ID of a table row; a number that is not a new whole number is
+    an InputError."""
+    key = f"{section}.{fields[0]}"
+    if not is_integer(fields[0]):
+        raise InputError(f"expected a {what} number, got '{fields[0]}'", key=at(number, key))
+    if int(fields[0]) in seen:
+        raise InputError(f"duplicate {what} ID", key=at(number, key))
+    return key, int(fields[0])
+
+
 def read_bodies(rows, notes):
     """BODIES rows as Bodies: dict body ID -> (row number, Body)."""
     bodies = {}
     for number, fields in rows:
-        key = f"BODIES.{fields[0]}"
-        if not is_integer(fields[0]):
-            raise InputError(f"expected a body number, got '{fields[0]}'", key=at(number, key))
-        bid = int(fields[0])
-        if bid in bodies:
-            raise InputError("duplicate body ID", key=at(number, key))
+        key, bid = _row_id("BODIES", "body", number, fields, bodies)
         kind = _kind(fields[1], (FIXED, COUPLED, FREE), at(number, f"{key}.Attachment"), "body")
         pose = [value(tok, number, f"{key}.{col}", _COORDINATE if i < 3 else _ANGLE)
                 for i, (col, tok) in enumerate(zip(("X0", "Y0", "Z0", "r0", "p0", "y0"), fields[2:8]))]
@@ -100,12 +106,7 @@ def read_points(rows, bodies, notes):
     """POINTS rows as Points: dict point ID -> (row number, Point); ``bodies`` by ID (read_bodies)."""
     points = {}
     for number, fields in rows:
-        key = f"POINTS.{fields[0]}"
-        if not is_integer(fields[0]):
-            raise InputError(f"expected a point number, got '{fields[0]}'", key=at(number, key))
-        pid = int(fields[0])
-        if pid in points:
-            raise InputError("duplicate point ID", key=at(number, key))
+        key, pid = _row_id("POINTS", "point", number, fields, points)
         word, digits, rest = _WORD_NUMBER.fullmatch(fields[1]).groups() if _WORD_NUMBER.fullmatch(fields[1]) \
             else (fields[1], "", "")
         body = None

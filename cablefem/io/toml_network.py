@@ -144,11 +144,7 @@ def read_six_table(path, key):
     text table: seven columns t x y z roll pitch yaw (comma, semicolon or blank separated, a header
     row of names optional, ``#`` comments), or an OpenFAST output (.out) with a ``Time`` column and
     the PtfmSurge ... PtfmYaw channels, found by name."""
-    try:
-        with open(path, encoding="utf-8") as handle:
-            rows = handle.read().splitlines()
-    except (OSError, UnicodeDecodeError) as error:
-        raise InputError(f"cannot read {path}: {v.one_line(error)}", key=key) from None
+    rows = v.read_rows(path, key)
     columns, table, name = None, [], path.rsplit("/", 1)[-1]
     for number, row in enumerate(rows, start=1):
         fields = [f for f in re.split(r"[,;\s]+", row.strip()) if f]

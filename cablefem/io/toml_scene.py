@@ -327,11 +327,7 @@ def read_motion_table(path, key):
     or blanks; ``#`` starts a comment line. Times must strictly increase.
     """
     name = os.path.basename(path)
-    try:
-        with open(path, encoding="utf-8") as handle:
-            rows = handle.read().splitlines()
-    except (OSError, UnicodeDecodeError) as error:
-        raise InputError(f"cannot read {path}: {v.one_line(error)}", key=key) from None
+    rows = v.read_rows(path, key)
     table = []
     for number, row in enumerate(rows, start=1):
         fields = [f for f in re.split(r"[,;\s]+", row.strip()) if f]
