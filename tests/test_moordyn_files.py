@@ -183,3 +183,53 @@ def test_the_one_list_of_refusals_is_the_table_in_the_docs():
         docs = handle.read()
     for what, instead in REFUSED.values():
         assert f"| {what.replace('|', chr(92) + '|')} | {instead} |" in docs, what
+
+
+SHARED = """--------------------- MoorDyn Input File ------------------------------------
+two coupled bodies, each moored to one anchor, and a shared line between them (lines.txt's line type)
+----------------------- LINE TYPES ------------------------------------------
+TypeName   Diam    Mass/m     EA         BA/-zeta    EI         Cd     Ca     CdAx    CaAx
+(name)     (m)     (kg/m)     (N)        (N-s/-)     (N-m^2)    (-)    (-)    (-)     (-)
+main       0.09    77.7066    384.243E6  -0.8        0          1.6    1.0    0.1     0.0
+---------------------------- BODIES -----------------------------------------------------
+ID   Attachment  X0     Y0    Z0    r0      p0     y0     Mass  CG*      I*       Volume  CdA*   Ca
+(#)  (-)         (m)    (m)   (m)   (deg)   (deg)  (deg)  (kg)  (m)      (kg-m^2) (m^3)   (m^2)  (-)
+1    Coupled     0.0    0.0   0     0       0      0      0     0        0        0       0      0
+2    Coupled     400.0  0.0   0     0       0      180    0     0        0        0       0      0
+---------------------- POINTS --------------------------------
+ID    Type      X       Y       Z       Mass   Volume  CdA    Ca
+(#)   (-)       (m)     (m)     (m)     (kg)   (m^3)   (m^2)  (-)
+1     Fixed     -800.0  0       -320.0  0      0       0      0
+2     Body1     -5.0    0       -20.0   0      0       0      0
+3     Body1     5.0     0       -20.0   0      0       0      0
+4     Body2     5.0     0       -20.0   0      0       0      0
+5     Body2     -5.0    0       -20.0   0      0       0      0
+6     Fixed     1200.0  0       -320.0  0      0       0      0
+---------------------- LINES ----------------------------------------
+ID   LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
+(#)   (name)     (#)      (#)       (m)       (-)     (-)
+1     main       1        2         902.2     20      -
+2     main       3        4         420.0     20      -
+3     main       5        6         902.2     20      -
+---------------------- OPTIONS -----------------------------------------
+320           WtrDpth       water depth (m)
+------------------------- need this line --------------------------------------
+"""
+
+
+def test_a_shared_line_between_two_coupled_bodies(tmp_path, capsys):
+    """Two coupled bodies (the second yawed 180 deg: its point at x = +5 in its frame is at x = 395),
+    each moored to an anchor, and a line shared between them: three strings, the shared one between
+    two body points; the statics solve, and by symmetry the shared line's ends carry equal tensions
+    (1e-6) as do the two mooring legs."""
+    path = tmp_path / "shared.txt"
+    path.write_text(SHARED)
+    scene = load_scene(path)
+    assert kinds(scene)[1] == {"body1": "coupled", "body2": "coupled"}
+    shared = scene.lines[1]
+    assert shared.ends == ("point3", "point4") and shared.prescribed == (True, True)
+    np.testing.assert_allclose([shared.anchor, shared.fairlead], [[5, 0, -20], [395, 0, -20]], atol=1e-12)
+    lines = static_json(path, tmp_path, capsys)["lines"]
+    np.testing.assert_allclose(lines[1]["anchor_tension"], lines[1]["fairlead_tension"], rtol=1e-6)
+    assert scene.lines[2].ends == ("point6", "point5")  # its fixed end first
+    np.testing.assert_allclose(lines[0]["fairlead_tension"], lines[2]["fairlead_tension"], rtol=1e-6)
