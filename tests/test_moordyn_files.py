@@ -233,3 +233,18 @@ def test_a_shared_line_between_two_coupled_bodies(tmp_path, capsys):
     np.testing.assert_allclose(lines[1]["anchor_tension"], lines[1]["fairlead_tension"], rtol=1e-6)
     assert scene.lines[2].ends == ("point6", "point5")  # its fixed end first
     np.testing.assert_allclose(lines[0]["fairlead_tension"], lines[2]["fairlead_tension"], rtol=1e-6)
+
+
+def test_lines_txt_tensions_agree_with_moorpys_system_reading_the_same_file(tmp_path, capsys):
+    """MoorPy's System reads lines.txt itself (g set to MoorDyn's 9.80665, which cablefem reads as
+    the default of a file without g): fairlead and anchor tensions within 3e-5 (60 P2 elements per
+    line: converged to 1e-6; the 1.3e-5 left is the seabed, springs of kBot here, rigid in MoorPy)."""
+    mp = pytest.importorskip("moorpy")
+    wrap = tmp_path / "wrap.toml"
+    wrap.write_text(f'[moordyn]\nfile = "{data("lines.txt")}"\nelements = 60\norder = 2\n')
+    lines = static_json(wrap, tmp_path, capsys)["lines"]
+    system = mp.System(file=data("lines.txt"), g=9.80665)
+    system.initialize()
+    system.solveEquilibrium()
+    for entry, line in zip(lines, system.lineList):
+        np.testing.assert_allclose([entry["anchor_tension"], entry["fairlead_tension"]], [line.TA, line.TB], rtol=3e-5)
