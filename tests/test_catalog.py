@@ -11,13 +11,19 @@ from cablefem.fused import FusedEvaluator, pack_params
 from cablefem.geometry import Plane
 from cablefem.loads import catalog
 from cablefem.line import Joint, Segment
+from cablefem.loads.current import CurrentProfile
 from cablefem.loads.friction import IsotropicFriction
 from cablefem.scene import Contact
 from cablefem.system import LineSystem
 
 from test_loads import assert_tangent_matches_finite_differences, line_state, system_with_all_loads
 
-NAMES = [spec.name for spec in catalog.CATALOG]
+#: every catalog load, and the two that see the current once more in a current varying with depth
+NAMES = [spec.name for spec in catalog.CATALOG] + ["drag+profile", "points+profile"]
+#: a sheared current over the test line's heights (about -100 m to the surface, the clump near the
+#: seabed and the buoy at the surface both on a sloping piece), bending at four heights
+PROFILE = CurrentProfile.from_arrays([-130.0, -70.0, -30.0, 5.0],
+                                     [[0.1, 0.0, 0.0], [0.4, -0.2, 0.02], [0.9, 0.3, 0.0], [1.4, 0.1, -0.05]], "test")
 SEABED = Plane.from_slope([-600.0, 0.0, -100.0], np.radians(20.0), np.pi / 2)
 LAW = IsotropicFriction(0.3, 1.2, 0.05)
 
@@ -25,8 +31,9 @@ LAW = IsotropicFriction(0.3, 1.2, 0.05)
 def one_load_system(name, order):
     """The soft rope of test_loads with drag, added mass, contact and friction, keeping one load;
     for the point loads, the rope in two segments with a clump weight at their joint and a buoy at
-    its free fairlead end, half out of the water."""
-    system = system_with_all_loads(SEABED, LAW, order)
+    its free fairlead end, half out of the water. '+profile': the same load in a sheared current."""
+    name, _, profile = name.partition("+")
+    system = system_with_all_loads(SEABED, LAW, order, profile=PROFILE if profile else None)
     if name == "points":
         line = system.line
         seg = line.segments[0]

@@ -328,15 +328,17 @@ ROPE = LineType("rope", diameter=0.15, mass=40.0, EA=2.0e6, damping=0.05, Cd_nor
                 Cd_tangential=0.4, Ca_normal=1.0, Ca_tangential=0.5)
 
 
-def system_with_all_loads(seabed, law, order):
+def system_with_all_loads(seabed, law, order, profile=None):
     """A soft rope (so that tension does not swamp the other loads' share of the tangent) with
-    drag in a current, added mass and contact with friction; LineSystem's own contact is off."""
+    drag in a current (uniform, or ``profile``), added mass and contact with friction; LineSystem's
+    own contact is off."""
     line = make_line(ROPE, order, elements=12, length=590.0)  # taut: every point stretched >= 1.7 %
-    env = Environment(current=(0.2, 0.1, 0.0))
+    env = Environment(current=(0.2, 0.1, 0.0), current_profile=profile)
     nel = line.segments[0].elements
     props = dict(diameter=np.full(nel, ROPE.diameter), mass=np.full(nel, ROPE.mass))
     contact = SeabedContact(seabed, 3e5 * props["diameter"], contact_damping(Contact(), props), friction=law)
-    loads = (Drag(props["diameter"], np.full(nel, 2.0), np.full(nel, 0.4), env.water_density, env.current),
+    loads = (Drag(props["diameter"], np.full(nel, 2.0), np.full(nel, 0.4), env.water_density, env.current,
+                  profile=profile),
              AddedMass(props["diameter"], np.full(nel, 1.0), np.full(nel, 0.5), env.water_density),
              contact)
     return LineSystem(line, seabed, Contact(stiffness=0.0), env, extra_loads=loads)

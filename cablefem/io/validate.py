@@ -311,6 +311,15 @@ def folder(value, key):
     return value
 
 
+def read_rows(path, key):
+    """The lines of the UTF-8 text file at ``path``; an unreadable file is an InputError at ``key``."""
+    try:
+        with open(path, encoding="utf-8") as handle:
+            return handle.read().splitlines()
+    except (OSError, UnicodeDecodeError) as error:
+        raise InputError(f"cannot read {path}: {one_line(error)}", key=key) from None
+
+
 def one_line(error):
     """The text of an exception on one line."""
     return " ".join(str(error).split())
