@@ -23,7 +23,6 @@ except ModuleNotFoundError:  # Python 3.10
 import numpy as np
 
 from ..errors import InputError
-from ..loads import catalog
 from ..geometry import Horizontal, Plane, choose_seabed
 from ..geometry.readers import MAX_COORDINATE, parse_number
 from ..line import Line, LineType, Segment
@@ -104,6 +103,8 @@ def read_toml_scene(path, data=None):
     takes the default of ``cablefem.scene``. ``[line_types]`` and ``[[lines]]``
     may not be combined with ``[moordyn]`` (the lines come from the file).
     """
+    from ..loads import catalog  # here: a load module may read its keys' converters from cablefem.io
+
     path = os.path.abspath(path)
     folder = os.path.dirname(path)
     data = parse_toml(path) if data is None else data

@@ -19,7 +19,8 @@ rui2025 Sec. 2.3 cites them), so the reaction grows from nothing at the surface 
 one bar diameter below it. With it the soil's reaction is continuous in position at the surface for
 any su_mudline (with su_mudline = 0 it would be anyway); below d_b it is rui2025's exactly.
 
-The history of a point is where the soil holds it, its anchor q: the elastic offset is e = r - q,
+The history of a point is where the soil holds it, its anchor q (with, for output, the plastic slip
+and the plastic work per unit length so far, and the reaction): the elastic offset is e = r - q,
 split along the line's unit tangent t into e_t = t . e and the normal part e_n = e - e_t t. The
 tangential spring returns on its own (|k_t e_t| <= 1), the two normal ones together in the normal
 plane (radial return on |e_n| <= 1 / k_n, the same K_n in both directions, rui2025 Eq. 1b-c; a
@@ -45,11 +46,17 @@ from numba import njit
 from ..io import validate as v
 from . import LoadSpec, Terms, identity_like, outer, unit_tangent
 
+#: a spring whose offset is within this fraction beyond its yield offset counts as on the yield surface,
+#: where the force is the yield force and the tangent the elastic one: a point that stays on the
+#: surface (the lying chain, at its bearing capacity under its own weight; a point sliding on at its
+#: friction) is there to round-off, and round-off would otherwise pick its tangent, elastic or
+#: plastic, at random from one Newton iteration to the next
+ON_YIELD = 1e-9
 #: the installation starts of the pretension path (``cablefem.pretension``)
 INSTALLATIONS = ("laid", "catenary")
 #: defaults of the [soil] keys (rui2025 Sec. 2.3, Table 1; N_c: docs/scene.md, "[soil]")
 DEFAULTS = {"su_mudline": 0.0, "bearing_factor": 7.6, "width_normal": 2.5, "width_tangential": 8.0,
-            "installation": "laid", "installation_steps": 40}
+            "installation": "laid", "installation_steps": 200}
 
 
 class Soil:
@@ -89,8 +96,8 @@ class Soil:
         e_n = e - e_t * t
         size = np.sqrt(np.einsum("ceq,ceq->eq", e_n, e_n))
         c = np.clip(self.k_t * e_t, -1.0, 1.0)
-        slope = np.where(np.abs(self.k_t * e_t) <= 1.0, self.k_t, 0.0)
-        plastic = self.k_n * size > 1.0
+        slope = np.where(np.abs(self.k_t * e_t) <= 1.0 + ON_YIELD, self.k_t, 0.0)
+        plastic = self.k_n * size > 1.0 + ON_YIELD
         h = np.where(plastic, 1.0 / np.where(plastic, size, 1.0), self.k_n)
         return e_t, e_n, c, slope, h, plastic, size, t, divisor
 
@@ -119,17 +126,21 @@ class Soil:
         return terms
 
     def _record(self, state, anchor, force):
-        """The trial history: anchors, the plastic slip so far [m] and the reaction [N/m]."""
+        """The trial history: anchors, the plastic slip [m] and plastic work [J/m] so far, and the
+        reaction [N/m]."""
         old, new = state.old["soil"], state.new["soil"]
         moved = np.moveaxis(anchor, 0, -1)
+        step = moved - old["anchor"]
+        reaction = np.moveaxis(force, 0, -1)
         new["anchor"] = moved
-        new["slip"] = old["slip"] + np.linalg.norm(moved - old["anchor"], axis=-1)
-        new["reaction"] = np.moveaxis(force, 0, -1)
+        new["slip"] = old["slip"] + np.linalg.norm(step, axis=-1)
+        new["work"] = old["work"] - np.einsum("eqc,eqc->eq", reaction, step)
+        new["reaction"] = reaction
 
     def initial_history(self, state):
         """An unloaded soil at the start shape: every anchor where its point is."""
         return {"anchor": np.moveaxis(state.r, 0, -1), "slip": np.zeros(state.r.shape[1:]),
-                "reaction": np.zeros(state.r.shape[1:] + (3,))}
+                "work": np.zeros(state.r.shape[1:]), "reaction": np.zeros(state.r.shape[1:] + (3,))}
 
     def energy(self, state):
         """A merit function for statics' line search [J/m] (nel, nq): the springs' energy at the
@@ -152,11 +163,11 @@ def _spring(x, k):
 
 
 def plastic_dissipation(old, new, weights):
-    """Plastic work [J] of an accepted step: sum of (-f) . (q' - q) over the points, with the
-    committed ``old`` and trial ``new`` history records (nel, nq) and the quadrature weights
-    ``weights`` (nel, nq) [m]; >= 0 by the return's construction."""
-    moved = new["soil"]["anchor"] - old["soil"]["anchor"]
-    return float(np.sum(-np.einsum("eqc,eqc->eq", new["soil"]["reaction"], moved) * weights))
+    """Plastic work [J] between two histories, ``old`` and ``new`` (record arrays (nel, nq) of the
+    full points, e.g. the committed history before and after accepted steps): the soil's ``work``,
+    the sum over the steps of (-f) . (q' - q) per unit length, integrated with the quadrature
+    weights ``weights`` (nel, nq) [m]; >= 0 step by step by the return's construction."""
+    return float(np.sum((new["soil"]["work"] - old["soil"]["work"]) * weights))
 
 
 # ---------------------------------------------------------------------------- the compiled face
@@ -188,17 +199,19 @@ def soil_point(ctx, p, old, new, state, hold, out, M, u):
     size = np.sqrt(e_n[0] * e_n[0] + e_n[1] * e_n[1] + e_n[2] * e_n[2])
     x = q.k_t * e_t
     c = min(max(x, -1.0), 1.0)
-    slope = q.k_t if abs(x) <= 1.0 else 0.0
-    plastic = q.k_n * size > 1.0
+    slope = q.k_t if abs(x) <= 1.0 + ON_YIELD else 0.0
+    plastic = q.k_n * size > 1.0 + ON_YIELD
     h = 1.0 / size if plastic else q.k_n
-    moved = 0.0
+    moved, work = 0.0, 0.0
     for i in range(3):
         shape[i] = q.a_t * c * t[i] + q.a_n * h * e_n[i]
         out.f[i] -= s * shape[i]
         anchor[i] = r[i] - ((c / q.k_t * t[i] + h / q.k_n * e_n[i]) if s > 0.0 else 0.0)
         new.soil.reaction[i] = -s * shape[i]
         moved += (anchor[i] - held[i]) ** 2
+        work += s * shape[i] * (anchor[i] - held[i])
     new.soil.slip = old.soil.slip + np.sqrt(moved)
+    new.soil.work = old.soil.work + work
     if not ctx.jac or s <= 0.0:
         return
     radial = 1.0 / (size * size * size) if plastic else 0.0  # (e_n e_n^T / |e_n|^2) / |e_n|
@@ -243,7 +256,7 @@ SPEC = LoadSpec("soil", "full",
                 (("a_t", "f8"), ("a_n", "f8"), ("k_t", "f8"), ("k_n", "f8"), ("su0", "f8"), ("su1", "f8"),
                  ("ramp", "f8")),
                 soil_point, Soil,
-                history=(("anchor", "f8", (3,)), ("slip", "f8"), ("reaction", "f8", (3,))),
+                history=(("anchor", "f8", (3,)), ("slip", "f8"), ("work", "f8"), ("reaction", "f8", (3,))),
                 scratch=(1, 3), frames=("reaction", "slip"), build=build, section="soil",
                 keys={"su_mudline": _STRENGTH, "su_gradient": v.limited(v.non_negative, "strength_gradient"),
                       "bearing_factor": v.limited(v.positive, "coefficient"),
