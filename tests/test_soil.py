@@ -311,7 +311,7 @@ def test_bad_soil_input_is_one_line_naming_the_key(tmp_path, soil, line_type, an
     assert message in error.value.message() and "\n" not in error.value.message()
 
 
-def test_soil_keys_need_their_tables_and_line_types_their_bar_diameter(tmp_path):
+def test_soil_keys_need_their_tables_line_types_their_bar_diameter_and_lines_fixed_ends(tmp_path):
     from cablefem.errors import InputError
 
     path = small_scene(tmp_path)
@@ -321,6 +321,9 @@ def test_soil_keys_need_their_tables_and_line_types_their_bar_diameter(tmp_path)
                               "line_types.chain.nominal_diameter: missing: [soil] needs the chain's bar diameter"),
                              (text.replace("[soil]", "[soil_]").replace("su_gradient", "x").replace(
                                  "installation_steps = 50", ""), "unknown key"),
+                             (text.replace('fairlead = [0.0, 0.0, -5.0]', 'fairlead = "buoy"')
+                              + '[points.buoy]\nkind = "free"\nposition = [0.0, 0.0, -5.0]\nvolume = 2.0\n',
+                              "lines[0]: line 'line1' has a free end or points on it"),
                              (textwrap.dedent(text[:text.index("[soil]")]),
                               "lines[0].anchor: the anchor lies 3 m below the seabed (more than the line's diameter, "
                               "0.1 m): a padeye below the seabed needs a [soil] table")):

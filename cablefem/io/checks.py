@@ -12,9 +12,10 @@ once for TOML and MoorDyn scenes alike (``cablefem.io.load_scene``), and by
 - the line ends against the water and the seabed: no seabed above the still water surface below a
   line end, no anchor above it, no anchor or fairlead below the seabed (a padeye may lie there only
   with ``[soil]``);
-- a scene with ``[soil]`` (``check_soil``): a soil with some strength, every line type's
-  ``nominal_diameter``, each padeye on or below the seabed surface (the laid line starts from it
-  up or down to the lying chain), and a line long enough to be laid;
+- a scene with ``[soil]`` (``check_soil``): a soil with some strength, lines between a fixed padeye
+  and a fairlead (no free end, no points on them), every line type's ``nominal_diameter``, each
+  padeye on or below the seabed surface (the laid line starts from it up or down to the lying
+  chain), and a line long enough to be laid;
 - the prescribed motion over its whole course, not only at rest: the peak
   chord strain of every line, the peak speed and acceleration of the fairlead.
 
@@ -145,6 +146,10 @@ def check_soil(scene):
         raise _error(scene, "soil.su_gradient", "su_mudline and su_gradient are both 0: a soil without "
                      "strength holds nothing (the line would sink without end)")
     for i, line in enumerate(scene.lines):
+        if not all(line.prescribed) or line.joints:
+            raise _error(scene, f"lines[{i}]", f"line '{line.name}' has a free end or points on it: the "
+                         "pretension path of [soil] moves one line between a fixed padeye and its fairlead "
+                         "(networks in soil are not supported yet)")
         for j, segment in enumerate(line.segments):
             if segment.type.nominal_diameter is None:
                 raise _error(scene, f"line_types.{segment.type.name}.nominal_diameter", "missing: [soil] needs "
