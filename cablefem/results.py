@@ -228,29 +228,3 @@ def history_fields(system, element):
             fields[f"{spec.name}_{name}"] = old[spec.name][name].mean(axis=1)[element]
     return fields
 
-
-def jsonable(value):
-    """``value`` with numpy arrays and scalars turned into lists and Python numbers, through dicts,
-    lists and tuples (dict keys to str): what ``json.dumps`` takes."""
-    if isinstance(value, dict):
-        return {str(k): jsonable(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [jsonable(v) for v in value]
-    if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, (np.floating, np.integer, np.bool_)):
-        return value.item()
-    return value
-
-
-def save_results(out, results):
-    """Write a study's ``results`` (dict) as ``out``/results.json (``jsonable``), the folder made if
-    missing; the file's path."""
-    import json
-    from pathlib import Path
-
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    path = out / "results.json"
-    path.write_text(json.dumps(jsonable(results), indent=1))
-    return path

@@ -23,7 +23,8 @@ from pathlib import Path
 import numpy as np
 
 from cablefem.run import run_scene
-from cablefem.scene import Motion, Output, Solver
+from cablefem.scene import Motion, Output
+from cablefem.study import write_json
 
 from . import run as study
 
@@ -112,12 +113,7 @@ def main(argv=None):
     args = parser.parse_args(argv)
     results = run(cycles=4 if args.fast else 10)
     print(table(results))
-    import json
-
-    from cablefem.results import jsonable
-
-    args.out.mkdir(parents=True, exist_ok=True)
-    (args.out / "cyclic.json").write_text(json.dumps(jsonable(results), indent=1))
+    write_json(args.out / "cyclic.json", results)
     figure(results, args.out / "cyclic.png")
     print(f"wrote {args.out / 'cyclic.json'}, {args.out / 'cyclic.png'}")
 

@@ -31,7 +31,8 @@ from cablefem.geometry import Horizontal
 from cablefem.io.checks import check_scene
 from cablefem.line import Line, LineType, Segment
 from cablefem.pretension import resting_depth, solve_pretension
-from cablefem.results import report, save_results
+from cablefem.results import report
+from cablefem.study import write_json
 from cablefem.run import build_system
 from cablefem.scene import Environment, Scene
 from cablefem.statics import solve_line
@@ -238,7 +239,7 @@ def main(argv=None):
     print(table(results))
     from .figures import figures
 
-    path = save_results(args.out, results)
+    path = write_json(args.out / "results.json", results)
     print(f"wrote {path}, {', '.join(figures(results, args.out))}")
 
 

@@ -45,7 +45,8 @@ from cablefem.geometry import Horizontal
 from cablefem.line import Line, LineType, Segment
 from cablefem.loads.soil import Soil
 from cablefem.pretension import LoadPath
-from cablefem.results import end_forces, save_results
+from cablefem.results import end_forces
+from cablefem.study import write_json
 from cablefem.scene import Contact, Environment
 from cablefem.system import LineSystem
 
@@ -279,7 +280,7 @@ def main(argv=None):
     args = parser.parse_args(argv)
     results = run(fast=args.fast)
     print(table(results))
-    path = save_results(args.out, results)
+    path = write_json(args.out / "results.json", results)
     print(f"wrote {path}, {', '.join(figures(results, args.out))}")
 
 
