@@ -294,6 +294,7 @@ def test_static_json_and_run_frames_carry_the_soil(tmp_path):
 
 @pytest.mark.parametrize("soil, line_type, anchor_z, extra, message", [
     ("su_mudline = -5.0", "", -33.0, "", "soil.su_mudline: must be >= 0"),
+    ("su_gradient = -1500.0", "", -33.0, "", "soil.su_gradient: must be >= 0"),
     ("", "", -33.0, "", None),
     ('installation = "dropped"', "", -33.0, "", "soil.installation: unknown value 'dropped'; valid: laid | catenary"),
     ("stiffness_normal = 0.0", "", -33.0, "", "soil.stiffness_normal: must be > 0"),
@@ -302,7 +303,10 @@ def test_static_json_and_run_frames_carry_the_soil(tmp_path):
 def test_bad_soil_input_is_one_line_naming_the_key(tmp_path, soil, line_type, anchor_z, extra, message):
     from cablefem.errors import InputError
 
-    path = small_scene(tmp_path, anchor_z=anchor_z, soil=soil, line_type=line_type, extra=extra)
+    gradient = soil.startswith("su_gradient")  # replaces the scene's own
+    path = small_scene(tmp_path, anchor_z=anchor_z, soil="" if gradient else soil, line_type=line_type, extra=extra)
+    if gradient:
+        path.write_text(path.read_text().replace("su_gradient = 1500.0", soil))
     if message is None:  # su_gradient = 0 with su_mudline = 0: no strength
         path.write_text(path.read_text().replace("su_gradient = 1500.0", "su_gradient = 0.0"))
         message = "soil.su_gradient: su_mudline and su_gradient are both 0"
