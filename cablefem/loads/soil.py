@@ -43,6 +43,7 @@ above the surface neither acts (the contact's spring only pushes once the centre
 import numpy as np
 from numba import njit
 
+from ..errors import InputError
 from ..io import validate as v
 from . import LoadSpec, Terms, identity_like, outer, unit_tangent
 
@@ -241,8 +242,10 @@ def build(setting):
     if keys is None:
         return None
     d_b = setting.props["nominal_diameter"]
-    if np.any(~np.isfinite(d_b)):
-        raise ValueError("[soil] needs every line type's nominal_diameter (checked when a scene is read)")
+    if np.any(~np.isfinite(d_b)):  # checked when a scene is read (io.checks), not in a sweep's cases
+        name = next((s.type.name for s in setting.line.segments if s.type.nominal_diameter is None), "NAME")
+        raise InputError("missing: [soil] needs the chain's bar diameter d_b (rui2025 Eq. 3)",
+                         key=f"line_types.{name}.nominal_diameter")
     values = dict(DEFAULTS, **keys)
     k_n = values.get("stiffness_normal", 2.0 / d_b)
     k_t = values.get("stiffness_tangential", 1.0 / d_b)
