@@ -90,8 +90,13 @@ def start_states(scene, t0=0.0, systems=None):
                                    boundary_path(scene, line)(t0)[0])
             fem = None if systems is None else systems[k].fem
             static = build_system(scene, moved, dynamic=False, fem=fem)
-            result = solve_static(static, tolerance=scene.solver.tolerance,
-                                  max_iterations=scene.solver.max_iterations)
+            if "soil" in scene.load_settings:  # a line in soil starts where its pretension path ends
+                from .pretension import solve_pretension
+
+                result = solve_pretension(static, scene.solver.tolerance, scene.solver.max_iterations)
+            else:
+                result = solve_static(static, tolerance=scene.solver.tolerance,
+                                      max_iterations=scene.solver.max_iterations)
             X, iterations = result.X, iterations + result.iterations
         if systems is not None:
             for rule, (old, new) in static.history.items():

@@ -23,7 +23,6 @@ except ModuleNotFoundError:  # Python 3.10
 import numpy as np
 
 from ..errors import InputError
-from ..loads import catalog
 from ..geometry import Horizontal, Plane, choose_seabed
 from ..geometry.readers import MAX_COORDINATE, parse_number
 from ..line import Line, LineType, Segment
@@ -64,7 +63,8 @@ ENVIRONMENT_KEYS = {"water_density": v.limited(v.positive, "water_density"),
 LINE_TYPE_KEYS = {"diameter": v.limited(v.positive, "diameter"), "mass": v.limited(v.positive, "mass"),
                   "EA": v.limited(v.positive, "EA"), "damping": v.limited(v.non_negative, "damping_time"),
                   "Cd_normal": _COEFFICIENT, "Cd_tangential": _COEFFICIENT, "Ca_normal": _COEFFICIENT,
-                  "Ca_tangential": _COEFFICIENT, "damping_when_slack": v.boolean}
+                  "Ca_tangential": _COEFFICIENT, "damping_when_slack": v.boolean,
+                  "nominal_diameter": v.limited(v.positive, "diameter")}
 LINE_KEYS = {"name": v.text, "anchor": lambda value, key: value, "fairlead": lambda value, key: value,
              "segments": v.tables, "order": _ORDER}  # an end: coordinates or a point's name (toml_network.end)
 SEGMENT_KEYS = {"type": v.text, "length": _LENGTH, "elements": _ELEMENTS}
@@ -105,6 +105,8 @@ def read_toml_scene(path, data=None):
     takes the default of ``cablefem.scene``. ``[line_types]`` and ``[[lines]]``
     may not be combined with ``[moordyn]`` (the lines come from the file).
     """
+    from ..loads import catalog  # here: a load module may read its keys' converters from cablefem.io
+
     path = os.path.abspath(path)
     folder = os.path.dirname(path)
     data = parse_toml(path) if data is None else data
@@ -144,8 +146,9 @@ def read_toml_scene(path, data=None):
     solver = replace(base.solver if base else Solver(), **_section(data, "solver", SOLVER_KEYS))
     output = replace(Output(), **_section(data, "output", OUTPUT_KEYS))
     notes.append(seabed_note)
-    load_settings = {section: _section(data, section, converters)
-                     for section, converters in catalog.sections().items() if section in data}
+    load_settings = {spec.section: v.pick(v.table(data[spec.section], spec.section), spec.section, spec.keys,
+                                          required=spec.required)
+                     for spec in catalog.CATALOG if spec.section and spec.section in data}
     return Scene(name=name, lines=lines, seabed=seabed, contact=contact, environment=environment,
                  friction=friction, motion=motion, solver=solver, output=output, source=path,
                  notes=notes, moordyn_options=dict(base.moordyn_options) if base else {}, keys=keys,
