@@ -50,14 +50,15 @@ def run_moordyn(path, scene, duration, dt_out, dtM, ic_dtM, watch, segments=None
     tension to record). With ``as_points`` the file's BODIES are coupled POINTS instead (the file
     written that way by the caller), moved along the secants of r + R p. Returns a dict of
     t (n,), body (n, k, 6) [N, N m], fairleads (n, f, 3) [N], joints (n, j, 3) [m], ends (n, e) [N],
-    wall_time_s and init_time_s."""
+    end_mass (n, f, 3, 3) [kg] (the mass matrix, added mass included, of the line end node at each
+    fairlead: MoorDyn's point force leaves out its inertia), wall_time_s and init_time_s."""
     import moordyn
 
     names = list(scene.bodies)
     steps = int(round(duration / dt_out))
     t = np.arange(steps + 1) * dt_out
     text = peer.rewrite_input(Path(path).read_text(), dtM=ic_dtM, segments=segments)
-    out = {key: [] for key in ("body", "fairleads", "joints", "ends")}
+    out = {key: [] for key in ("body", "fairleads", "joints", "ends", "end_mass")}
     local = [scene.points[name] for name in watch["fairlead_names"]]
 
     def coupled(time_s):
@@ -85,6 +86,7 @@ def run_moordyn(path, scene, duration, dt_out, dtM, ic_dtM, watch, segments=None
                 fairleads = [moordyn.GetPoint(system, i) for i in watch["fairleads"]]
                 joints = [moordyn.GetPoint(system, i) for i in watch["joints"]]
                 ends = [(moordyn.GetLine(system, line), node) for line, node in watch["ends"]]
+                fairlead_ends = [(moordyn.GetLine(system, line), node) for line, node in watch["fairlead_ends"]]
 
                 def record(forces):
                     fair = np.array([moordyn.GetPointForce(p) for p in fairleads])
@@ -95,6 +97,7 @@ def run_moordyn(path, scene, duration, dt_out, dtM, ic_dtM, watch, segments=None
                     out["fairleads"].append(fair)
                     out["joints"].append([moordyn.GetPointPos(p) for p in joints])
                     out["ends"].append([np.linalg.norm(moordyn.GetLineNodeTen(line, node)) for line, node in ends])
+                    out["end_mass"].append([moordyn.GetLineNodeM(line, node) for line, node in fairlead_ends])
 
                 t_now = [0.0]
                 record(None)  # before the first step MoorDyn has returned no body force
@@ -213,3 +216,16 @@ def element_tensions(integ, vertex):
         tensions.append(float(EA * max(stretch - 1.0, 0.0) + EA * beta * rate))
     return tensions
 
+
+
+def without_end_inertia(md, scene, point_names):
+    """MoorDyn's run ``md`` with each fairlead force less the inertia of its line end node, M a
+    with a the point's acceleration on its body (the force the line exerts on the point, as
+    cablefem's FEM reaction), and the bodies' loads summed from those (validation/moordyn's RMS*)."""
+    names = list(scene.bodies)
+    paths = [BodyPointPath(scene.bodies[scene.points[n].body], scene.points[n].position) for n in point_names]
+    x = np.stack([path.states(md["t"])[0] for path in paths], axis=1)
+    a = np.stack([path.states(md["t"])[2] for path in paths], axis=1)
+    forces = md["fairleads"] - np.einsum("nfab,nfb->nfa", md["end_mass"], a)
+    body = np.array([body_loads(scene, names, point_names, x[n], forces[n], t) for n, t in enumerate(md["t"])])
+    return dict(md, fairleads=forces, body=body)

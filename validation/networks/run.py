@@ -29,7 +29,7 @@ from cablefem.io import load_scene  # noqa: E402
 
 from validation.moordyn.run import _json_ready, _version  # noqa: E402
 from validation.networks import statics, systems  # noqa: E402
-from validation.networks.dynamics import run_cablefem, run_moordyn, time_cablefem  # noqa: E402
+from validation.networks.dynamics import run_cablefem, run_moordyn, time_cablefem, without_end_inertia  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 COUPLING_DT = 0.01  # s between MoorDyn coupling calls and samples of both codes
@@ -76,7 +76,9 @@ def watch_list(net):
         into = [(i + 1, line.segments) for i, line in enumerate(net.lines) if line.b == joint]
         out = [(i + 1, 0) for i, line in enumerate(net.lines) if line.a == joint]
         ends += into + out
-    return {"fairleads": [ids[n] for n in fairleads], "fairlead_names": fairleads,
+    fairlead_ends = [next((i + 1, line.segments if line.b == name else 0) for i, line in enumerate(net.lines)
+                          if name in (line.a, line.b)) for name in fairleads]
+    return {"fairleads": [ids[n] for n in fairleads], "fairlead_names": fairleads, "fairlead_ends": fairlead_ends,
             "joints": [ids[n] for n in joints], "joint_names": joints, "ends": ends}
 
 
@@ -175,7 +177,9 @@ def run_case(case, folder, settings, log=print, switches=()):
              "moordyn_s_per_simulated_s": (md["wall_time_s"] - md["init_time_s"]) / duration,
              "cablefem_s_per_simulated_s": cf_stepping / duration}
     series = {"moordyn": md, "cablefem": cf}
-    entry["switches"] = {}
+    # MoorDyn's point force leaves out the inertia of the line end node (as validation/moordyn's RMS*)
+    entry["switches"] = {"moordyn_end_node_inertia": {
+        "rows": compare(case, without_end_inertia(md, scene, watch["fairlead_names"]), cf, net, t_from)}}
     if "moordyn_points_not_body" in switches:
         points_dat = folder / f"{case}-points.dat"
         points_dat.write_text(systems.moordyn_text(net, bodies_as_points=True))
