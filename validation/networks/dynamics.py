@@ -128,6 +128,15 @@ def body_loads(scene, names, point_names, positions, forces, t):
     return loads
 
 
+def started(scene, dt):
+    """The scene's integrator for every string, at its static equilibrium at t = 0, step dt [s]."""
+    systems = [build_system(scene, line) for line in scene.lines]
+    states, _ = start_states(scene, systems=systems)
+    return [INTEGRATORS[scene.solver.integrator](system, X0, boundary_path(scene, line), dt=dt,
+                                                anchor=anchor_path(scene, line), **integrator_options(scene.solver))
+            for system, line, X0 in zip(systems, scene.lines, states)]
+
+
 def run_cablefem(toml, duration, dt_out, dt, joints, scene=None):
     """cablefem's BDF2 on the TOML scene (statics at t = 0, then steps of dt [s], sampled every
     dt_out [s]). ``joints``: names of the free points whose positions to record. Returns a dict of
@@ -137,12 +146,7 @@ def run_cablefem(toml, duration, dt_out, dt, joints, scene=None):
     scene = scene or load_scene(toml)
     names = list(scene.bodies)
     start = time.perf_counter()
-    systems = [build_system(scene, line) for line in scene.lines]
-    states, _ = start_states(scene, systems=systems)
-    integrators = [INTEGRATORS[scene.solver.integrator](system, X0, boundary_path(scene, line), dt=dt,
-                                                       anchor=anchor_path(scene, line),
-                                                       **integrator_options(scene.solver))
-                   for system, line, X0 in zip(systems, scene.lines, states)]
+    integrators = started(scene, dt)
     initialised = time.perf_counter()
     # where things are: (string, end 0/1) per body point, (string, vertex) per joint
     on_body = [(k, e, name) for k, line in enumerate(scene.lines) for e, name in enumerate(line.ends)
@@ -187,12 +191,7 @@ def time_cablefem(toml, duration, dt, scene=None):
     statics: (stepping, statics)."""
     scene = scene or load_scene(toml)
     start = time.perf_counter()
-    systems = [build_system(scene, line) for line in scene.lines]
-    states, _ = start_states(scene, systems=systems)
-    integrators = [INTEGRATORS[scene.solver.integrator](system, X0, boundary_path(scene, line), dt=dt,
-                                                       anchor=anchor_path(scene, line),
-                                                       **integrator_options(scene.solver))
-                   for system, line, X0 in zip(systems, scene.lines, states)]
+    integrators = started(scene, dt)
     statics = time.perf_counter() - start
     times = np.arange(1, int(round(duration / dt)) + 1) * dt
     start = time.perf_counter()
