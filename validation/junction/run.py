@@ -237,18 +237,19 @@ def static_check(scene, log=print):
 
 
 # ----------------------------------------------------------------------------- dynamics
-def run_moordyn(scene, factor, dtM, duration, initial_states=None):
+def run_moordyn(scene, factor, dtM, duration, initial_states=None, coupling_dt=COUPLING_DT):
     """MoorDyn on the crowfoot (NumSegs times ``factor``, step dtM [s]) under the scene's motion:
     t (n,), fairlead, anchor1, anchor2 tensions (n,) [N] (the fairlead's with the end node's
     inertia taken out: the force on the point), junction (n, 3) [m], wall times [s].
     ``initial_states`` {factor: bytes}: MoorDyn's initial condition of an earlier run with the same
-    segments is reused (its stationary solve, with steps of IC_DTM / factor, is kept there)."""
+    segments is reused (its stationary solve, with steps of IC_DTM / factor, is kept there).
+    ``coupling_dt`` [s]: the interval of MoorDyn's coupling calls (the README's coupling switch)."""
     initial_states = {} if initial_states is None else initial_states
     with tempfile.TemporaryDirectory(prefix="crowfoot-md-") as folder:
         path = Path(folder) / "crowfoot.dat"
         path.write_text(moordyn_text(factor))
         _, points = peer.coupled_points(path)
-        r = peer.run_moordyn(path, moordyn_motion(scene, points), duration, COUPLING_DT, dtM=dtM, probe=probe,
+        r = peer.run_moordyn(path, moordyn_motion(scene, points), duration, coupling_dt, dtM=dtM, probe=probe,
                              ic_dtM=IC_DTM / factor, initial_state=initial_states.get(factor))
         initial_states.setdefault(factor, r["initial_state"])
     acceleration = fairlead_motion(scene.motion, r["t"])[2]
