@@ -222,7 +222,9 @@ def plan(fast):
                      "hydrodynamics_per_unstretched_length": (
                          "cablefem", (1, 160, 0.005, 1e-8, "numpy-hydroTrue-lumpedFalse"), (1, 160, 0.005, 1e-8)),
                      "damping_when_slack": ("cablefem", (1, 160, 0.005, 1e-8, "default-damping-law"),
-                                            (1, 160, 0.005, 1e-8))}}}
+                                            (1, 160, 0.005, 1e-8)),
+                     "two_sided_contact_damping": ("cablefem", (1, 160, 0.005, 1e-8, "two-sided-contact-damping"),
+                                                   (1, 160, 0.005, 1e-8))}}}
 
 
 def md_label(settings):
