@@ -22,6 +22,7 @@ whole network. Steps that do not converge are halved, as for one line.
 import numpy as np
 
 from .errors import ConvergenceError
+from .network import junction_ends
 from .loads import State
 
 
@@ -234,3 +235,16 @@ class JunctionSteps:
             integ.system.commit_history()
             integ.steps += 1
         return True
+
+
+def junction_steps(scene, integrators):
+    """Step the strings that meet at junctions together (``cablefem.coupled_steps``): their
+    integrators' ``march`` goes through one ``JunctionSteps``; None without junctions."""
+    ends = junction_ends(scene.lines, scene.points, scene.bodies)
+    if not ends:
+        return None
+    members = sorted({k for pairs in ends.values() for k, _ in pairs})
+    index = {k: i for i, k in enumerate(members)}
+    return JunctionSteps([integrators[k] for k in members],
+                         {name: [(index[k], end) for k, end in pairs] for name, pairs in ends.items()},
+                         scene.solver.tolerance)
