@@ -50,14 +50,18 @@ def static_network(scene):
     from .results import report
     from .statics import solve_line
 
+    def static_system(line):
+        from .run import build_system  # the run module only for networks and soil
+
+        return build_system(scene, line, dynamic=False)
+
     network, coupled = None, set()
     if scene.points or scene.bodies:
         from .coupling import solve_network
         from .network import coupling
-        from .run import build_system
 
         if any(coupling(scene.lines, scene.points, scene.bodies)):
-            network = solve_network(scene, lambda line: build_system(scene, line, dynamic=False),
+            network = solve_network(scene, static_system,
                                     tolerance=scene.solver.tolerance, max_iterations=scene.solver.max_iterations)
             coupled = {k for k, X in enumerate(network.states) if X is not None}
     reports, results, iterations = [], [], 0 if network is None else network.iterations
@@ -71,9 +75,8 @@ def static_network(scene):
         else:
             if "soil" in scene.load_settings:
                 from .pretension import solve_pretension
-                from .run import build_system
 
-                system = build_system(scene, line, dynamic=False)
+                system = static_system(line)
                 result = solve_pretension(system, scene.solver.tolerance, scene.solver.max_iterations)
             else:
                 system, result = solve_line(line, scene.seabed, scene.contact, scene.environment,

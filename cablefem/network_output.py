@@ -65,9 +65,10 @@ def frame_marks(scene):
     of their points; a vertex k of a line is row k * order of its frame's points."""
     rows, points = {}, []
     for k, line in enumerate(scene.lines):
-        vertices = np.concatenate([[0], np.cumsum([seg.elements for seg in line.segments])])
-        named = [(name, vertices[0 if e == 0 else -1]) for e, name in enumerate(line.ends) if name is not None]
-        named += [(joint.name, vertices[b]) for b, joint in line.joints if joint.name in scene.points]
+        last = sum(seg.elements for seg in line.segments)
+        named = [(name, (0, last)[e]) for e, name in enumerate(line.ends) if name is not None]
+        named += [(joint.name, vertex) for vertex, (_, joint) in zip(line.joint_vertices(), line.joints)
+                  if joint.name in scene.points]
         for name, vertex in named:
             if name not in rows:
                 rows[name] = (k, int(vertex) * line.order)
