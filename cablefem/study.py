@@ -6,6 +6,7 @@ import hashlib
 import json
 import math
 import subprocess
+import time
 from pathlib import Path
 
 import numpy as np
@@ -33,6 +34,57 @@ def tensions(integ, times):
     (m,) and (m,) [N]."""
     forces = integ.march(np.asarray(times, dtype=float))
     return np.linalg.norm(forces[:, 0], axis=1), np.linalg.norm(forces[:, 1], axis=1)
+
+
+def observed_order(counts, errors, floor):
+    """(pairwise orders, least-squares order over |errors| above ``floor``) of a convergence study:
+    the errors (m,) (None: missing) against the element counts (m,); None where there are fewer
+    than two points."""
+    n = np.asarray(counts, dtype=float)
+    e = np.abs(np.asarray([np.nan if v is None else v for v in errors], dtype=float))
+    pairwise = [float(np.log(e[i] / e[i + 1]) / np.log(n[i + 1] / n[i])) if e[i] > 0 and e[i + 1] > 0 else None
+                for i in range(len(n) - 1)]
+    keep = e > floor
+    fitted = float(-np.polyfit(np.log(n[keep]), np.log(e[keep]), 1)[0]) if keep.sum() >= 2 else None
+    return pairwise, fitted
+
+
+def observed_orders(counts, runs, floors, error=None):
+    """``observed_order`` of each error of a convergence study: {key: {"pairwise", "fitted"}} for
+    each ``key: floor`` of ``floors``, the errors ``error(run, key)`` of ``runs`` (default
+    ``run[key]``) against the element counts."""
+    error = error or (lambda run, key: run[key])
+    return {key: dict(zip(("pairwise", "fitted"), observed_order(counts, [error(run, key) for run in runs], floor)))
+            for key, floor in floors.items()}
+
+
+def solve_on_mesh(line_of, seabed, contact, environment, mesh="uniform", touchdown=None, tolerance=1e-8):
+    """(system, StaticResult, wall time [s]) of a static solve of the line ``line_of(vertex)`` (a
+    ``Line``; ``vertex``: None or an arc length [m] that gets a mesh vertex) on ``mesh``: "uniform"
+    (as given), "fitted" (statics' touchdown fitting, ``solve_line``) or "exact-vertex" (a vertex at
+    ``touchdown`` [m])."""
+    from .statics import solve_line, solve_static
+    from .system import LineSystem
+
+    start = time.perf_counter()
+    if mesh == "fitted":
+        system, result = solve_line(line_of(None), seabed, contact, environment, fit_touchdown=True,
+                                    tolerance=tolerance)
+    else:
+        system = LineSystem(line_of(touchdown if mesh == "exact-vertex" else None), seabed, contact, environment)
+        result = solve_static(system, tolerance=tolerance)
+    return system, result, time.perf_counter() - start
+
+
+def position_errors(fem, X, reference, length):
+    """Largest distances [m] of a solution X from ``reference(s)`` ((n, 3) at unstretched arc
+    lengths s (n,)): at the mesh's vertices, and along the line (4001 points and the vertices
+    over ``length`` [m])."""
+    vertices = fem.mesh.p[0]
+    dense = np.union1d(np.linspace(0.0, length, 4001), vertices)
+    nodes = np.linalg.norm(fem.evaluate(X, vertices) - reference(vertices), axis=1)
+    curve = np.linalg.norm(fem.evaluate(X, dense) - reference(dense), axis=1)
+    return float(nodes.max()), float(curve.max())
 
 
 def jsonable(value, private=False, finite=False, drop=()):

@@ -32,9 +32,7 @@ from cablefem.line import Line, Segment
 from cablefem.results import report
 from cablefem.scene import Contact, Environment
 from cablefem.scenes import table5_chain
-from cablefem.statics import solve_line, solve_static
-from cablefem.study import write_json
-from cablefem.system import LineSystem
+from cablefem.study import observed_orders, position_errors, solve_on_mesh, write_json
 
 HERE = Path(__file__).resolve().parent
 
@@ -126,27 +124,16 @@ def stiffness_table(case):
 def solve(case, order, elements, mesh, tolerance=1e-8):
     """(system, StaticResult, wall time [s]); mesh "uniform", "fitted" (``solve_line``) or
     "exact-vertex" (a vertex at the closed-form touchdown)."""
-    contact = Contact(stiffness=case.stiffness)
-    environment = Environment(water_density=WATER_DENSITY, gravity=GRAVITY)
-    start = time.perf_counter()
-    if mesh == "fitted":
-        system, result = solve_line(case.line(order, elements), case.seabed, contact, environment,
-                                    fit_touchdown=True, tolerance=tolerance)
-    else:
-        touchdown = case.exact.touchdown_s if mesh == "exact-vertex" else None
-        system = LineSystem(case.line(order, elements, touchdown), case.seabed, contact, environment)
-        result = solve_static(system, tolerance=tolerance)
-    return system, result, time.perf_counter() - start
+    return solve_on_mesh(lambda vertex: case.line(order, elements, vertex), case.seabed,
+                         Contact(stiffness=case.stiffness), Environment(water_density=WATER_DENSITY, gravity=GRAVITY),
+                         mesh, case.exact.touchdown_s, tolerance)
 
 
 def measure(case, system, result, wall):
     """Errors of one solve against the closed form (JSON-ready)."""
     rep = report(system, result.X)
     fem = system.fem
-    vertices = fem.mesh.p[0]
-    dense = np.union1d(np.linspace(0.0, LENGTH, 4001), vertices)
-    nodes = np.linalg.norm(fem.evaluate(result.X, vertices) - case.reference_points(vertices), axis=1)
-    curve = np.linalg.norm(fem.evaluate(result.X, dense) - case.reference_points(dense), axis=1)
+    nodes, curve = position_errors(fem, result.X, case.reference_points, LENGTH)
     return {"order": fem.order, "elements": fem.n_elements, "nodes": int(fem.n_dofs),
             "iterations": int(result.iterations), "residual": float(result.residual),
             "converged": bool(result.residual <= CONVERGED_RESIDUAL), "wall_time_s": wall,
@@ -155,18 +142,7 @@ def measure(case, system, result, wall):
             "anchor_tension_error": rep.anchor_tension / case.exact.anchor_tension - 1.0,
             "touchdown_s": rep.touchdown_s,
             "touchdown_error_m": None if rep.touchdown_s is None else rep.touchdown_s - case.exact.touchdown_s,
-            "node_position_error_m": float(nodes.max()), "curve_position_error_m": float(curve.max())}
-
-
-def observed_order(elements, errors, floor):
-    """(pairwise orders, least-squares order over |errors| above ``floor``) against the element count."""
-    n = np.asarray(elements, dtype=float)
-    e = np.abs(np.asarray([np.nan if v is None else v for v in errors], dtype=float))
-    pairwise = [float(np.log(e[i] / e[i + 1]) / np.log(n[i + 1] / n[i])) if e[i] > 0 and e[i + 1] > 0 else None
-                for i in range(len(n) - 1)]
-    keep = e > floor
-    fitted = float(-np.polyfit(np.log(n[keep]), np.log(e[keep]), 1)[0]) if keep.sum() >= 2 else None
-    return pairwise, fitted
+            "node_position_error_m": nodes, "curve_position_error_m": curve}
 
 
 QUANTITIES = (("fairlead_tension_error", TENSION_FLOOR), ("anchor_tension_error", TENSION_FLOOR),
@@ -181,15 +157,9 @@ def study(name, fast, stiffness=STIFFNESS):
     runs, orders = [], {}
     for mesh in MESHES:
         for order in ORDERS:
-            found = []
-            for n in elements:
-                run = measure(case, *solve(case, order, n, mesh))
-                run["mesh"] = mesh
-                found.append(run)
+            found = [dict(measure(case, *solve(case, order, n, mesh)), mesh=mesh) for n in elements]
             runs += found
-            orders[f"{mesh} P{order}"] = {
-                key: dict(zip(("pairwise", "fitted"), observed_order(elements, [r[key] for r in found], floor)))
-                for key, floor in QUANTITIES}
+            orders[f"{mesh} P{order}"] = observed_orders(elements, found, dict(QUANTITIES))
     exact = case.exact
     return {"case": name, "slope_deg": CASES[name]["slope_deg"], "span_m": case.span, "stiffness": case.stiffness,
             "exact": {"fairlead_tension": exact.fairlead_tension, "anchor_tension": exact.anchor_tension,

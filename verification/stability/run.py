@@ -252,7 +252,7 @@ def stiff_case(dt, integrator="bdf2", stiffness=3e14, period=STIFF_PERIOD):
     """The Batista-Perkovic line (EA 5.055e11 N, G_K [N/m^3], P1 x 31, 15 deg seabed) with its
     fairlead swept from the H = 3.5 MN span to the H = 4.5 MN span and back over ``period`` [s]
     (a raised cosine: at rest at both ends). Returns (scene, span(t) [m])."""
-    from verification.batista_perkovic import run as bp
+    from verification.batista_perkovic import case as bp
 
     near, far = bp.Case(3.5e6), bp.Case(4.5e6)
     stroke = far.span - near.span
@@ -272,7 +272,7 @@ def stiff_case(dt, integrator="bdf2", stiffness=3e14, period=STIFF_PERIOD):
 def explicit_limits(stiffness=3e14, elements=31):
     """The step limits an explicit code would face on the stiff case [s]: the axial wave
     h / sqrt(EA/m) and the seabed spring 2 / sqrt(G_K d / m)."""
-    from verification.batista_perkovic import run as bp
+    from verification.batista_perkovic import case as bp
 
     h = bp.LENGTH / elements
     return {"axial_cfl_s": h / math.sqrt(bp.EA / bp.MASS),
@@ -282,7 +282,7 @@ def explicit_limits(stiffness=3e14, elements=31):
 
 def run_stiff(fast):
     """Case 1: the stiff line at dt 0.01-0.1 s against the closed form along the motion."""
-    from verification.batista_perkovic import run as bp
+    from verification.batista_perkovic import case as bp
 
     period = STIFF_PERIOD
     settings = [(0.1, "bdf2"), (0.05, "bdf2")] if fast else \
