@@ -114,6 +114,16 @@ def write_json(path, results, **options):
     return path
 
 
+def package_version(name):
+    """The installed version of the distribution ``name`` (e.g. "moordyn"), None if it is not installed."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version(name)
+    except PackageNotFoundError:
+        return None
+
+
 def provenance():
     """Which cablefem the numbers come from: git HEAD, its uncommitted files under cablefem/ (None:
     not a git checkout), and a digest of its source files (several people edit the tree at once)."""

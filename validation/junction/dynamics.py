@@ -16,7 +16,8 @@ from cablefem.schemes import integrator_options
 from validation.junction.inputs import (CASES, CLUMP, FILE_ELEMENTS, IC_DTM, ORDER, case_duration, moordyn_text,
                                         scene_of, toml_text)
 from validation.moordyn import peer
-from validation.moordyn.run import COUPLING_DT, differences, moordyn_motion, on_grid
+from validation.moordyn.comparison import differences, on_grid
+from validation.moordyn.runners import COUPLING_DT, moordyn_motion
 
 QUANTITIES = ("fairlead", "anchor1", "anchor2")  # tension series compared (and the junction's position)
 

@@ -8,8 +8,8 @@ import numpy as np
 
 from cablefem.io import load_scene
 
-from validation.moordyn.run import (IC_OPTIONS, LINE_HEADER, OPTIONS_HEADER, OUTPUTS, POINT_HEADER, TYPE_HEADER,
-                                    _type_row)
+from validation.moordyn.inputs import (IC_OPTIONS, LINE_HEADER, OPTIONS_HEADER, OUTPUTS, POINT_HEADER,
+                                       TYPE_HEADER, _type_row)
 
 WATER_DENSITY, GRAVITY = 1025.0, 9.81
 DEPTH = 300.0  # m: the anchors at 180 m, every line clear of the seabed (no contact, no friction)

@@ -37,7 +37,7 @@ from validation.junction.dynamics import QUANTITIES, run_case  # noqa: E402,F401
 from validation.junction.inputs import CASES, write_inputs  # noqa: E402
 from validation.junction.report import report  # noqa: E402
 from validation.junction.statics import static_check  # noqa: E402
-from validation.moordyn.run import COUPLING_DT  # noqa: E402
+from validation.moordyn.runners import COUPLING_DT  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 

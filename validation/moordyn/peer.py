@@ -223,7 +223,6 @@ def run_moordyn(path, motion, duration, dt_out, dtM=None, segments=None, options
     positions = np.empty((steps + 1, k, 3))
     end_mass = np.zeros((steps + 1, k, 3, 3))
     ends = line_ends(text)
-    nodes = None
     with tempfile.TemporaryDirectory(prefix="moordyn-") as folder:
         work = Path(folder) / path.name
         work.write_text(text)
@@ -232,48 +231,26 @@ def run_moordyn(path, motion, duration, dt_out, dtM=None, segments=None, options
             start = time.perf_counter()
             system = moordyn.Create(str(work))
             try:
-                if initial_state is None:
-                    moordyn.Init(system, x.ravel(), v.ravel())
-                else:
-                    moordyn.Init_NoIC(system, x.ravel(), v.ravel())
-                    moordyn.Deserialize(system, initial_state)
-                if ic_dtM is not None and dtM is not None:
-                    moordyn.SetDt(system, dtM)
+                _initialise(moordyn, system, x, v, initial_state, dtM if ic_dtM is not None else None)
                 state = moordyn.Serialize(system)
                 initialised = finished = time.perf_counter()
                 points = [moordyn.GetPoint(system, i) for i in ids]
-                attached = []  # per coupled point: (line handle, end node index)
-                for i in ids:
-                    handles = []
-                    for number, end in ends.get(i, []):
-                        line = moordyn.GetLine(system, number)
-                        handles.append((line, 0 if end == "A" else moordyn.GetLineNumberNodes(line) - 1))
-                    attached.append(handles)
-
-                def masses():
-                    return [sum((np.array(moordyn.GetLineNodeM(line, node)) for line, node in handles),
-                                np.zeros((3, 3))) for handles in attached]
-
+                attached = _end_nodes(moordyn, system, ids, ends)
                 forces[0] = [moordyn.GetPointForce(p) for p in points]
                 probes = None if probe is None else [np.asarray(probe(moordyn, system), dtype=float)]
-                end_mass[0] = masses()
+                end_mass[0] = _end_masses(moordyn, attached)
                 positions[0] = x
                 for n in range(steps):
                     x_next, v_next = (np.asarray(a, dtype=float).reshape(k, 3) for a in motion(t[n + 1]))
                     rate = (x_next - x) / dt_out if coupling == "secant" else v
                     forces[n + 1] = np.reshape(moordyn.Step(system, x.ravel(), rate.ravel(), t[n], dt_out), (k, 3))
-                    end_mass[n + 1] = masses()
+                    end_mass[n + 1] = _end_masses(moordyn, attached)
                     positions[n + 1] = [moordyn.GetPointPos(p) for p in points]  # where MoorDyn put them
                     if probe is not None:
                         probes.append(np.asarray(probe(moordyn, system), dtype=float))
                     x, v = x_next, v_next
                 finished = time.perf_counter()
-                if line_nodes:
-                    nodes = []
-                    for i in range(1, moordyn.GetNumberLines(system) + 1):
-                        line = moordyn.GetLine(system, i)
-                        nodes.append(np.array([moordyn.GetLineNodePos(line, j)
-                                               for j in range(moordyn.GetLineNumberNodes(line))]))
+                nodes = _line_nodes(moordyn, system) if line_nodes else None
             finally:
                 moordyn.Close(system)
     result = {"t": t, "forces": forces, "tensions": np.linalg.norm(forces, axis=2), "positions": positions,
@@ -284,6 +261,47 @@ def run_moordyn(path, motion, duration, dt_out, dtM=None, segments=None, options
     if line_nodes:
         result["line_nodes"] = nodes
     return result
+
+
+
+def _initialise(moordyn, system, x, v, initial_state=None, dtM=None):
+    """MoorDyn's initial condition with the coupled points at x, velocities v (k, 3): its own
+    solve, or ``initial_state`` (bytes of ``moordyn.Serialize``) restored; then the step dtM [s]
+    when given."""
+    if initial_state is None:
+        moordyn.Init(system, x.ravel(), v.ravel())
+    else:
+        moordyn.Init_NoIC(system, x.ravel(), v.ravel())
+        moordyn.Deserialize(system, initial_state)
+    if dtM is not None:
+        moordyn.SetDt(system, dtM)
+
+
+def _end_nodes(moordyn, system, ids, ends):
+    """Per coupled point ``ids``: [(line handle, end node index)] of the line ends ``ends`` attached to it."""
+    attached = []
+    for i in ids:
+        handles = []
+        for number, end in ends.get(i, []):
+            line = moordyn.GetLine(system, number)
+            handles.append((line, 0 if end == "A" else moordyn.GetLineNumberNodes(line) - 1))
+        attached.append(handles)
+    return attached
+
+
+def _end_masses(moordyn, attached):
+    """Per coupled point: the mass matrices (3, 3) [kg] of the line end nodes attached to it, summed."""
+    return [sum((np.array(moordyn.GetLineNodeM(line, node)) for line, node in handles), np.zeros((3, 3)))
+            for handles in attached]
+
+
+def _line_nodes(moordyn, system):
+    """Every line's node positions, a list of (N+1, 3) arrays [m]."""
+    nodes = []
+    for i in range(1, moordyn.GetNumberLines(system) + 1):
+        line = moordyn.GetLine(system, i)
+        nodes.append(np.array([moordyn.GetLineNodePos(line, j) for j in range(moordyn.GetLineNumberNodes(line))]))
+    return nodes
 
 
 def static_forces(path, positions=None, dtM=None, segments=None, options=None):

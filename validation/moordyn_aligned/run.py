@@ -18,7 +18,7 @@ Both codes are refined until converged (MoorDyn to 1280 segments, dtM 2e-5 s, ~1
 P1/P2/P3 in space and time), then the finest runs are compared, and each remaining model
 difference is switched off one at a time (``SWITCHES``): the README tabulates them.
 
-Error measure (``validation.moordyn.run.differences``): over the window, at the run's own output
+Error measure (``validation.moordyn.comparison.differences``): over the window, at the run's own output
 times (the reference interpolated there), relative to the reference's mean tension: RMS, mean,
 peak (max) and trough (min) differences.
 
@@ -43,8 +43,9 @@ if __package__ in (None, ""):  # python validation/moordyn_aligned/run.py
 from cablefem.line import Line, Segment  # noqa: E402
 from cablefem.scenes import FLUME_MOTIONS, flume_scene, table5_chain  # noqa: E402
 from cablefem.study import write_json  # noqa: E402
-from validation.moordyn.run import (COUPLING_DT, FLUME_FILE_SEGMENTS, differences,  # noqa: E402
-                                    run_cablefem_case, run_moordyn_case)
+from validation.moordyn.comparison import differences  # noqa: E402
+from validation.moordyn.inputs import FLUME_FILE_SEGMENTS  # noqa: E402
+from validation.moordyn.runners import COUPLING_DT, run_cablefem_case, run_moordyn_case  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 MOORDYN_FILE = HERE.parent / "moordyn" / "inputs" / "flume_flat.dat"

@@ -15,7 +15,6 @@ the latest numbers.
 """
 
 import argparse
-import json
 import sys
 import time
 from pathlib import Path
@@ -26,8 +25,8 @@ if __package__ in (None, ""):  # python validation/networks/run.py
     sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
 from cablefem.io import load_scene  # noqa: E402
+from cablefem.study import package_version, write_json  # noqa: E402
 
-from validation.moordyn.run import _json_ready, _version  # noqa: E402
 from validation.networks import statics, systems  # noqa: E402
 from validation.networks.dynamics import run_cablefem, run_moordyn, time_cablefem, without_end_inertia  # noqa: E402
 
@@ -238,8 +237,8 @@ def run(fast=False, out_dir=None, log=print, cases=None, parts=("dynamics", "sta
     paths = write_inputs(out_dir / "inputs")
     cases = cases or (("shared",) if fast else tuple(CASES))
     kind = "fast" if fast else "full"
-    results = {"fast": fast, "coupling_dt_s": COUPLING_DT, "moordyn_version": _version("moordyn"),
-               "moorpy_version": _version("moorpy"), "dynamics": {}}
+    results = {"fast": fast, "coupling_dt_s": COUPLING_DT, "moordyn_version": package_version("moordyn"),
+               "moorpy_version": package_version("moorpy"), "dynamics": {}}
     series = {}
     start = time.perf_counter()
     if "dynamics" in parts:
@@ -275,7 +274,7 @@ def main(argv=None):
     args = parser.parse_args(argv)
     results, _ = run(fast=args.fast, out_dir=args.out, cases=args.cases, parts=args.parts)
     print(report(results))
-    (args.out / "results.json").write_text(json.dumps(_json_ready(results), indent=1))
+    write_json(args.out / "results.json", results, private=True)
 
 
 if __name__ == "__main__":

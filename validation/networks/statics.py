@@ -17,7 +17,7 @@ from cablefem.run import build_system
 from cablefem.touchdown import solve_line
 from cablefem.scene import Contact
 
-from validation.moordyn.run import GRAVITY, WATER_DENSITY
+from validation.moordyn.inputs import GRAVITY, WATER_DENSITY
 
 STIFF_KBOT = 3.0e9  # N/m^3
 

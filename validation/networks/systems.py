@@ -16,9 +16,9 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from validation.moordyn.run import (GRAVITY, HOUSNER_BETA, IC_DYNAMIC, IC_OPTIONS, LINE_HEADER,
-                                    OPTIONS_HEADER, OUTPUTS, TYPE_HEADER, WATER_DENSITY, _number, _type_row,
-                                    line_type_120mm_chain, line_type_186mm_polyester)
+from validation.moordyn.inputs import (GRAVITY, HOUSNER_BETA, IC_DYNAMIC, IC_OPTIONS, LINE_HEADER,
+                                       OPTIONS_HEADER, OUTPUTS, TYPE_HEADER, WATER_DENSITY, _number, _type_row,
+                                       line_type_120mm_chain, line_type_186mm_polyester)
 
 #: MoorDyn-C's seabed defaults, written into both codes' inputs (no friction: MoorPy has none)
 KBOT, CBOT = 3.0e6, 3.0e5

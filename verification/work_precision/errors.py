@@ -5,7 +5,7 @@ import numpy as np
 
 from cablefem.scenes import FLUME_MOTIONS
 
-from validation.moordyn.run import differences
+from validation.moordyn.comparison import differences
 from verification.work_precision.runners import MOTIONS
 
 WINDOW_PERIODS = 2

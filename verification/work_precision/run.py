@@ -10,7 +10,7 @@ fairlead motions, each ramped in over its first period:
 
 Error of a run = RMS over the last two periods of (its fairlead tension - the reference's), at the
 run's own output times (the reference interpolated there), divided by the reference's mean
-tension over the window (``validation.moordyn.run.differences``). Each code is measured against
+tension over the window (``validation.moordyn.comparison.differences``). Each code is measured against
 its own finest run (the README says why): cablefem against P3 elements at the finest mesh and
 step, MoorDyn against 640 segments at dtM = 1e-4 s. The two finest runs' difference is the model
 floor, reported apart. Wall times: cablefem's whole run (statics, set-up, steps), warmed up (numba
@@ -48,7 +48,7 @@ if __package__ in (None, ""):  # python verification/work_precision/run.py
 
 from cablefem.study import write_json  # noqa: E402
 
-from validation.moordyn.run import COUPLING_DT  # noqa: E402
+from validation.moordyn.runners import COUPLING_DT  # noqa: E402
 from verification.work_precision.errors import WINDOW_PERIODS, error_against, pareto, ratios  # noqa: E402,F401
 from verification.work_precision.motions import plan, study_motion  # noqa: E402
 from verification.work_precision.plots import figures  # noqa: E402

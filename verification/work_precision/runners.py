@@ -14,7 +14,8 @@ import numpy as np
 
 from cablefem.scenes import flume_scene, table5_chain
 
-from validation.moordyn.run import COUPLING_DT, FLUME_FILE_SEGMENTS, FLUME_LENGTH, run_moordyn_case
+from validation.moordyn.inputs import FLUME_FILE_SEGMENTS, FLUME_LENGTH
+from validation.moordyn.runners import COUPLING_DT, run_moordyn_case
 from verification.work_precision.runs import CablefemSettings, run_cablefem_scene
 
 MOORDYN_FILE = Path(__file__).resolve().parents[2] / "validation" / "moordyn" / "inputs" / "flume_flat.dat"
