@@ -9,16 +9,25 @@ saying "interrupted"; the exit status is then 130 or 143 (128 + the signal).
 """
 
 import argparse
+import copy
 import json
 import os
 import signal
 import sys
 import time
 import traceback
+from dataclasses import replace
 
 import numpy as np
 
 from .errors import ConvergenceError, InputError
+
+#: ``cablefem static`` solves a scene of at most this many nodes (all lines) on the numpy path:
+#: loading numba's compiled kernels costs a process ~0.25 s of CPU (its target and the kernels'
+#: cache), more than the whole numpy solve of such a scene (measured on the flume cases, CPU of
+#: the solve in a fresh process: 41 nodes 0.16-0.31 s numpy against 0.41-0.44 s compiled, 401
+#: nodes 0.22-0.25 s against 0.42-0.55 s)
+NUMPY_STATICS_NODES = 400
 
 
 def _load(path):
@@ -35,6 +44,23 @@ def write_json(path, data):
 
     prepare_file(path)
     write_atomic(path, json.dumps(data, indent=1))
+
+
+def numpy_statics(scene):
+    """The scene as ``cablefem static`` solves it: a small one (at most ``NUMPY_STATICS_NODES``
+    nodes, no network, no soil, the default assembly) on the numpy path, the catalog loads' numpy
+    faces on precomputed basis data with a sparse LU and the seabed's numpy projection, which
+    gives the compiled path's numbers to round-off (tests/test_statics.py) without loading a
+    compiled kernel; any other scene as it is (docs/outputs.md, ``cablefem static``)."""
+    nodes = sum(line.order * sum(seg.elements for seg in line.segments) + 1 for line in scene.lines)
+    if (nodes > NUMPY_STATICS_NODES or scene.points or scene.bodies or "soil" in scene.load_settings
+            or scene.solver.assembly != "kernel"):
+        return scene
+    seabed = scene.seabed
+    if getattr(seabed, "compiled", False):  # a grid's or a mesh's compiled projection: its numpy twin
+        seabed = copy.copy(seabed)
+        seabed.compiled = False
+    return replace(scene, seabed=seabed, solver=replace(scene.solver, assembly="numpy"))
 
 
 def solve_scene_static(scene):
@@ -115,7 +141,7 @@ def cmd_static(args):
     from .io.output import prepare_file
 
     start = time.perf_counter()
-    scene = _load(args.scene)
+    scene = numpy_statics(_load(args.scene))
     if args.json:
         prepare_file(args.json)  # before the work: a --json that cannot be written fails now
     reports, iterations, results, network = static_network(scene)

@@ -7,8 +7,11 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
+from cablefem.cli import NUMPY_STATICS_NODES, numpy_statics, static_network
 from cablefem.roots import brentq
+from cablefem.scenes import default_scene, flume_scene
 
 BENCHMARKS = Path(__file__).resolve().parents[1] / "benchmarks"
 
@@ -24,11 +27,43 @@ def _modules_after(command):
     return set(modules.split())
 
 
+def test_static_on_the_default_scene_loads_no_compiled_kernel():
+    """41 nodes: solved on the numpy path, numba's target (which imports numba.np.arraymath) is
+    never initialised and scipy.optimize is not imported."""
+    modules = _modules_after(["static"])
+    assert "numba.np.arraymath" not in modules
+    assert "scipy.optimize" not in modules
+
+
 def test_run_on_a_plane_imports_neither_scipy_optimize_nor_scipy_spatial(tmp_path):
     modules = _modules_after(["run", str(BENCHMARKS / "flume_snap.toml"), "--out", str(tmp_path),
                               "--duration", "0.34"])
     assert "scipy.optimize" not in modules
     assert "scipy.spatial" not in modules
+
+
+@pytest.mark.parametrize("seabed", ["steep", "flat"])
+def test_numpy_statics_equal_the_compiled_statics_to_round_off(seabed):
+    """``cablefem static`` on a small scene gives the compiled path's numbers: the same Newton
+    iterations and touchdown, the nodes to round-off (2e-17 of the line's extent measured on the
+    steep flume case; 1e-13 leaves room for other BLAS builds)."""
+    scene = flume_scene(seabed)
+    reference = static_network(scene)
+    numpy_path = static_network(numpy_statics(scene))
+    assert numpy_statics(scene).solver.assembly == "numpy"
+    assert numpy_path[1] == reference[1]
+    (a,), (b,) = reference[0], numpy_path[0]
+    assert a.touchdown_s == pytest.approx(b.touchdown_s, rel=1e-12)
+    np.testing.assert_allclose(b.nodes, a.nodes, rtol=0, atol=1e-13 * 635.0)
+    np.testing.assert_allclose(b.fairlead_force, a.fairlead_force, rtol=1e-12)
+
+
+def test_numpy_statics_only_for_small_plain_scenes():
+    scene = default_scene()
+    assert scene.seabed.compiled and not numpy_statics(scene).seabed.compiled
+    assert scene.seabed.compiled  # the scene's own seabed is left as it was
+    big = flume_scene("flat", elements=NUMPY_STATICS_NODES)
+    assert numpy_statics(big).solver.assembly == "kernel"
 
 
 def _random_cases(count=600, seed=7):
