@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from cablefem.cli import NUMPY_STATICS_NODES, numpy_statics, static_network
+from cablefem.io import load_scene
 from cablefem.roots import brentq
 from cablefem.scenes import default_scene, flume_scene
 
@@ -58,12 +59,14 @@ def test_numpy_statics_equal_the_compiled_statics_to_round_off(seabed):
     np.testing.assert_allclose(b.fairlead_force, a.fairlead_force, rtol=1e-12)
 
 
-def test_numpy_statics_only_for_small_plain_scenes():
+def test_numpy_statics_only_for_one_small_line():
     scene = default_scene()
     assert scene.seabed.compiled and not numpy_statics(scene).seabed.compiled
     assert scene.seabed.compiled  # the scene's own seabed is left as it was
     big = flume_scene("flat", elements=NUMPY_STATICS_NODES)
     assert numpy_statics(big).solver.assembly == "kernel"
+    three = load_scene(Path(__file__).resolve().parent / "data" / "moordyn" / "lines.txt")
+    assert len(three.lines) == 3 and numpy_statics(three) is three
 
 
 def _random_cases(count=600, seed=7):
