@@ -9,16 +9,27 @@ saying "interrupted"; the exit status is then 130 or 143 (128 + the signal).
 """
 
 import argparse
+import copy
 import json
 import os
 import signal
 import sys
 import time
 import traceback
+from dataclasses import replace
 
 import numpy as np
 
 from .errors import ConvergenceError, InputError
+
+#: ``cablefem static`` solves a single line of at most this many nodes on the numpy path: loading
+#: numba's compiled kernels costs a process 0.25-0.3 s of CPU (its target and the kernels' cache),
+#: and the numpy path ~9 us more per node and Newton iteration than the compiled one, so it wins
+#: below ~3e4 node-iterations (measured, the whole solve in a fresh process: the default scene,
+#: 41 nodes, 11 iterations, 0.16-0.31 s against 0.41-0.44 s; a 21-node line settling in 634
+#: iterations 0.74 s against 0.88 s). Several lines add their iterations (three 61-node lines on
+#: housner2022's slopes take 1666: 2.05 s against 1.46 s), so they keep the compiled path.
+NUMPY_STATICS_NODES = 200
 
 
 def _load(path):
@@ -35,6 +46,27 @@ def write_json(path, data):
 
     prepare_file(path)
     write_atomic(path, json.dumps(data, indent=1))
+
+
+def numpy_statics(scene):
+    """The scene as ``cablefem static`` solves it: a small one (one line of at most
+    ``NUMPY_STATICS_NODES`` nodes, no junction or free body to solve for, no soil, the default
+    assembly) on the numpy path, the catalog loads' numpy faces on precomputed basis data with a
+    sparse LU and the seabed's numpy projection, which gives the compiled path's numbers to
+    round-off (tests/test_startup.py) without loading a compiled kernel; any other scene as it is
+    (docs/outputs.md, ``cablefem static``)."""
+    from .network import coupling
+
+    nodes = sum(line.order * sum(seg.elements for seg in line.segments) + 1 for line in scene.lines)
+    if (len(scene.lines) > 1 or nodes > NUMPY_STATICS_NODES or "soil" in scene.load_settings
+            or scene.solver.assembly != "kernel"
+            or ((scene.points or scene.bodies) and any(coupling(scene.lines, scene.points, scene.bodies)))):
+        return scene
+    seabed = scene.seabed
+    if getattr(seabed, "compiled", False):  # a grid's or a mesh's compiled projection: its numpy twin
+        seabed = copy.copy(seabed)
+        seabed.compiled = False
+    return replace(scene, seabed=seabed, solver=replace(scene.solver, assembly="numpy"))
 
 
 def solve_scene_static(scene):
@@ -115,7 +147,7 @@ def cmd_static(args):
     from .io.output import prepare_file
 
     start = time.perf_counter()
-    scene = _load(args.scene)
+    scene = numpy_statics(_load(args.scene))
     if args.json:
         prepare_file(args.json)  # before the work: a --json that cannot be written fails now
     reports, iterations, results, network = static_network(scene)

@@ -76,7 +76,7 @@ from .dynamics import INTEGRATORS  # noqa: E402, F401  (the one registry: [solve
 class Solver:
     """Solver settings: integrator ("bdf2" | "generalized-alpha"), time step [s], duration [s],
     relative residual tolerance, Newton iteration cap, the assembly path ("kernel" or
-    "forms"), the spectral radius at infinite frequency of generalised-alpha, and whether
+    "forms"; "numpy", the statics of ``cablefem static`` on a small scene), the spectral radius at infinite frequency of generalised-alpha, and whether
     statics fits a mesh vertex to the touchdown point (``cablefem.statics.solve_line``),
     Newton in dynamics ("full", "modified": the tangent's LU factors kept across iterations
     and steps, or "auto": full with the compiled kernel, modified without), and the

@@ -110,7 +110,8 @@ class _Linearisation:
     """The static residual rows (N, 3) at X with their tangent, and the Newton step from them:
     through ``cablefem.fused`` (compiled, banded LU) when the system assembles with its kernel
     and holds only loads the fused kernel knows, else through ``LineSystem.evaluate`` and a
-    sparse LU (the reference path, and scikit-fem's forms with ``assembly="forms"``). Both give
+    sparse LU (the reference path: the loads' numpy faces on precomputed basis data with
+    ``assembly="numpy"``, scikit-fem's forms with ``assembly="forms"``). Both give
     the same numbers to round-off (tests/test_statics.py). Built per Newton solve: the fused
     kernel copies the seabed stiffness, which stiffness continuation changes between solves."""
 

@@ -28,7 +28,6 @@ The triangle below a point in plan is the same search on the table with vertical
 """
 
 import numpy as np
-from scipy.spatial import ConvexHull, cKDTree
 
 from . import _vertex_normal as vn
 
@@ -54,6 +53,8 @@ class PrismSearch:
             corner = self.vertices[self.triangles][:, :, :2]
             u, w = corner[:, 1] - corner[:, 0], corner[:, 2] - corner[:, 0]
             area = 0.5 * np.abs(u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0]).sum()
+            from scipy.spatial import ConvexHull  # here, not at import: ~0.07 s of start-up
+
             hull = ConvexHull(self.vertices[np.unique(self.triangles), :2]).volume
             self._convex = bool(abs(hull - area) <= 1e-9 * hull)
         return self._convex
@@ -61,6 +62,8 @@ class PrismSearch:
     def _nearest(self, points, k):
         """Indices (n, k) of the k triangles whose centroids are nearest to points (n, 3) [m]."""
         if self._tree is None:
+            from scipy.spatial import cKDTree  # on first use: a run on a plane never needs it
+
             self._tree = cKDTree(self._centroids)
         _, index = self._tree.query(points, k=min(k, len(self.triangles)))
         return index.reshape(len(points), -1)
@@ -68,6 +71,8 @@ class PrismSearch:
     def _nearest_xy(self, points, k):
         """Indices (n, k) of the k triangles whose centroids are nearest in plan to points (n, 3) [m]."""
         if self._tree_xy is None:
+            from scipy.spatial import cKDTree
+
             self._tree_xy = cKDTree(self._centroids[:, :2])
         _, index = self._tree_xy.query(points[:, :2], k=min(k, len(self.triangles)))
         return index.reshape(len(points), -1)
@@ -169,6 +174,8 @@ class PrismSearch:
             triangle, corner = np.nonzero(self.neighbours < 0)
             ends = self.vertices[self.triangles[triangle[:, None], (corner[:, None] + [1, 2]) % 3]]
             self._edges = (triangle, ends)
+            from scipy.spatial import cKDTree
+
             self._edge_tree = cKDTree(ends[:, :, :2].mean(axis=1))
         triangle, ends = self._edges
         _, index = self._edge_tree.query(points[:, :2], k=min(NEAREST_CANDIDATES, len(triangle)))
