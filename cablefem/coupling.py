@@ -31,7 +31,7 @@ import scipy.sparse.linalg as spla
 from .errors import ConvergenceError
 from .loads.points import PointLoads
 from .network import coupling, rotation, rotation_rates
-from .statics import newton, solve_static
+from .statics import axial_continuation, newton, solve_static
 
 
 def _cross(a):
@@ -164,6 +164,9 @@ class Network:
                 moves = [targets.get(e, X[dof]) - X[dof] for e, dof in enumerate((fem.anchor_dof, fem.fairlead_dof))]
                 X = X + (1.0 - s)[:, None] * moves[0] + s[:, None] * moves[1]
             X1, its, norm, _, ok = newton(system, X, tolerance, max_iterations)
+            if not ok:  # a string far stiffer than its loads (tripod.txt's float) from where it was
+                X1, more, norm, _, ok = axial_continuation(system, X, tolerance, max_iterations)
+                its += more
             if not ok:
                 result = solve_static(system, X, tolerance, max_iterations)
                 X1, its = result.X, result.iterations

@@ -8,7 +8,8 @@ when a full Newton step no longer reduces it and the step itself, the scale-free
 K^-1 G relative to the line's length, is below the tolerance (round-off: a position known to
 eps |X| leaves forces of eps |X| EA / h, which at large EA or seabed stiffness are far above any
 force tolerance). When Newton fails (a guess far from the answer), it falls back to
-pseudo-transient continuation, a damped pseudo-motion that ends in Newton, then to letting the
+pseudo-transient continuation, a damped pseudo-motion that ends in Newton, then to continuation on
+the axial stiffness (a line far stiffer than its loads, soft first), then to letting the
 line settle in water (``settle``: a lazy wave's buoyant section rising into its arch, slack chain
 sliding down a slope), then to continuation on the seabed stiffness (soft ground first, stiffened
 in steps); if that fails too, it stops with the residual and what to try.
@@ -166,8 +167,8 @@ def _parabolic_step(lam, f0, f1):
 def solve_static(system, X0=None, tolerance=1e-8, max_iterations=50):
     """Static equilibrium of one line system from the catenary guess (or X0); a StaticResult.
 
-    Newton first; if it fails, pseudo-transient continuation (a damped pseudo-motion), then the
-    line let go in water until it settles (``settle``: a buoyant section rising off the seabed
+    Newton first; if it fails, pseudo-transient continuation (a damped pseudo-motion), then
+    continuation on the axial stiffness (a line far stiffer than its loads), then the line let go in water until it settles (``settle``: a buoyant section rising off the seabed
     into its arch, which Newton cannot reach from a start with the section lying slack), then
     continuation on the seabed stiffness, each from the start."""
     start = time.perf_counter()
@@ -176,6 +177,7 @@ def solve_static(system, X0=None, tolerance=1e-8, max_iterations=50):
     first = _tension_only if _point_loads(system) is None else _point_continuation
     strategies = [("newton", lambda: first(system, X, tolerance, max_iterations, push=not slack)),
                   ("pseudo-transient", lambda: pseudo_transient(system, X, tolerance, 10 * max_iterations)),
+                  ("axial continuation", lambda: axial_continuation(system, X, tolerance, max_iterations)),
                   ("settling", lambda: settle(system, X, tolerance, max_iterations)),
                   ("continuation", lambda: _stiffness_continuation(system, X, tolerance, max_iterations))]
     total, history, best = 0, [], np.inf
@@ -354,6 +356,40 @@ def _stiffness_continuation(system, X, tolerance, max_iterations, factor=10.0):
     finally:
         contact.stiffness, contact.damping = target_k, target_c
     return X, total, norm, history, True
+
+
+def axial_continuation(system, X, tolerance, max_iterations):
+    """Newton through axial stiffnesses EA rising from a hundred times the line's submerged weight
+    to the scene's, a decade a stage, a stage that fails halved (to an eighth of a decade, then
+    pseudo-transient). A line far stiffer than its loads (a float of EA 2e9 N on 0.2 m elements
+    swinging onto the surface) leaves Newton a basin of micrometres: a transverse step d stretches
+    an element by d^2 / 2h, a force EA d^2 / 2h^2. Soft, the shape settles; each stiffer stage
+    starts from the last one's answer. Same returns as ``newton``."""
+    tension = system.tension
+    target = tension.EA.copy()
+    level = np.log10(100.0 * float(np.linalg.norm(system.weight_vector())) / float(np.max(target)))
+    if level >= -1.0:  # not stiff against its loads: nothing to gain over Newton and its fallbacks
+        return X, 0, np.inf, [], False
+    total, history, done, step = 0, [], None, 1.0  # done: the last level solved
+    try:
+        while True:
+            tension.EA = target * 10.0 ** level
+            X1, its, norm, hist, ok = _tension_only(system, X, tolerance, max_iterations, push=done is None)
+            if not ok and (done is None or level - done <= 0.125):
+                X1, more, norm, hist, ok = pseudo_transient(system, X, tolerance, 10 * max_iterations)
+                its += more
+            total, history = total + its, history + hist
+            if ok:
+                if level == 0.0:
+                    return X1, total, norm, history, True
+                X, done, step = X1, level, min(2.0 * step, 1.0)
+            elif done is not None and level - done > 0.125:
+                step = 0.5 * (level - done)
+            else:
+                return X, total, norm, history, False
+            level = min(done + step, 0.0)
+    finally:
+        tension.EA = target
 
 
 def __getattr__(name):

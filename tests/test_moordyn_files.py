@@ -94,7 +94,7 @@ def test_a_riser_between_two_fixed_points_in_a_current_profile(tmp_path, capsys)
 def test_lines_meeting_at_free_points_read_into_strings_and_a_junction():
     """tripod.txt: eleven lines, free points joining two line ends become joints of four strings
     (nodeTether + nodeFloat up to a free end, three anchor legs of three lines each), and point 3,
-    where four string ends meet, is a junction: a run takes it with BDF2 at fixed steps only
+    where four string ends meet, is a junction (its statics: the next test): a run takes it with BDF2 at fixed steps only
     (check_no_coupling refuses generalised-alpha, one line)."""
     scene = load_scene(data("tripod.txt"))
     assert sorted(line.name for line in scene.lines) == ["line11+10+9", "line2+1", "line5+4+3", "line8+7+6"]
@@ -107,6 +107,27 @@ def test_lines_meeting_at_free_points_read_into_strings_and_a_junction():
     scene.solver = replace(scene.solver, integrator="generalized-alpha")
     with pytest.raises(InputError, match="point 'point3' joins three or more lines"):
         check_no_coupling(scene)
+
+
+def test_tripod_statics_converge_with_the_float_lying_at_its_waterline(tmp_path, capsys):
+    """tripod.txt in statics: the float (EA 2.2e9 N on 0.21 m elements) on a free end swings onto the
+    surface, which Newton, pseudo-transient and settling all failed to reach (residual 1.7e-4 after
+    12,811 iterations); continuation on the axial stiffness reaches it. Nothing pulls sideways in
+    still water, so the three anchors' horizontal forces cancel (1e-6 of their size), the tether
+    stands vertical above the junction (point 3, moved from where the file put it), and the float's
+    nodes lie within its half-diameter of the surface."""
+    solved = static_json(data("tripod.txt"), tmp_path, capsys)
+    points = solved["points"]
+    anchors = np.array([points[name]["force"] for name in ("point6", "point9", "point12")])
+    horizontal = anchors[:, :2]
+    assert np.linalg.norm(horizontal.sum(axis=0)) <= 1e-6 * np.abs(horizontal).max()
+    (string,) = [line for line in solved["lines"] if line["name"] == "line2+1"]
+    nodes = np.array(string["nodes"])
+    junction = np.array(points["point3"]["position"])
+    assert np.linalg.norm(junction - [-0.82037111325625, 1.4824722198985547, -1.2840966813934565]) > 0.1
+    np.testing.assert_allclose(nodes[:6, :2], np.tile(junction[:2], (6, 1)), atol=1e-9)  # tether: 5 elements
+    assert np.all(np.abs(nodes[6:, 2]) < 0.41)  # the float, d = 0.82 m
+    assert string["fairlead_tension"] < 1e-3 * string["anchor_tension"]  # its free end
 
 
 def test_a_free_body_reads_solves_in_statics_and_is_refused_only_in_a_run(tmp_path, capsys):
