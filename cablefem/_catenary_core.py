@@ -18,7 +18,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from .roots import brentq
+from scipy.optimize import brentq
 
 from .errors import ConvergenceError
 

@@ -40,7 +40,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from .roots import brentq
+from scipy.optimize import brentq
 
 from . import _catenary_core as core
 from .errors import InputError

@@ -75,7 +75,7 @@ def touchdown(system, X, samples_per_element=16):
     def gap(q):
         return system.gap_at(X, np.array([q]))[0]
 
-    from .roots import brentq
+    from scipy.optimize import brentq
 
     a, b = s[last], s[last + 1]
     if gap(a) * gap(b) > 0:  # d_G touches zero without crossing: no root to refine
@@ -141,7 +141,7 @@ def surface_crossings(system, X, samples_per_element=16):
     """Where the line crosses the seabed surface: the sample arc lengths (m,), the crossings
     [(s [m], True if rising out of the soil)] (each refined by root finding) and the length of
     line below the surface [m]."""
-    from .roots import brentq
+    from scipy.optimize import brentq
 
     nodes = system.fem.mesh.p[0]
     fractions = np.linspace(0.0, 1.0, samples_per_element + 1)[:-1]
