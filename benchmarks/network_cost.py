@@ -37,7 +37,8 @@ def network_run(scene, duration):
     start = time.perf_counter()
     for integ in integrators:
         integ.march(times)
-    return time.perf_counter() - start, group.newton_iterations, states
+    wall = time.perf_counter() - start
+    return wall, sum(int(integ.counters[1]) for integ in integrators), states
 
 
 def alone_run(scene, k, X0, duration):
@@ -58,7 +59,7 @@ def alone_run(scene, k, X0, duration):
     times = np.arange(1, int(round(duration / scene.solver.dt)) + 1) * scene.solver.dt
     start = time.perf_counter()
     integ.march(times)
-    return time.perf_counter() - start
+    return time.perf_counter() - start, int(integ.counters[1])
 
 
 def main():
@@ -69,20 +70,23 @@ def main():
     scene = load_scene(SCENE)
     network_run(scene, 1.0)  # compile and warm
     rows = {"network": [], **{line.name: [] for line in scene.lines}}
-    iterations = 0
+    iterations = {}
     for _ in range(args.repeats):
-        wall, iterations, states = network_run(scene, args.duration)
+        wall, iterations["network"], states = network_run(scene, args.duration)
         rows["network"].append(wall / args.duration)
         for k, line in enumerate(scene.lines):
-            rows[line.name].append(alone_run(scene, k, states[k], args.duration) / args.duration)
+            wall, iterations[line.name] = alone_run(scene, k, states[k], args.duration)
+            rows[line.name].append(wall / args.duration)
     median = {name: statistics.median(values) for name, values in rows.items()}
     alone = [median[line.name] for line in scene.lines]
-    print(f"{'run':<12} {'wall per simulated s':>21}")
+    steps = args.duration / scene.solver.dt
+    print(f"{'run':<12} {'wall per simulated s':>21} {'Newton its per step':>20} {'us per string-iteration':>24}")
     for name, value in median.items():
-        print(f"{name:<12} {value:21.4f}")
+        strings = len(scene.lines) if name == "network" else 1
+        per = 1e6 * value * args.duration / max(iterations[name], 1)
+        print(f"{name:<12} {value:21.4f} {iterations[name] / steps / strings:20.2f} {per:24.1f}")
     print(f"network / its costliest line alone: {median['network'] / max(alone):.2f}")
     print(f"network / its lines alone, summed:  {median['network'] / sum(alone):.2f}")
-    print(f"junction Newton iterations per step: {iterations / (args.duration / scene.solver.dt):.2f}")
 
 
 if __name__ == "__main__":

@@ -28,16 +28,16 @@ class JunctionSteps:
     """The integrators of the strings that end at junctions (BDF2, with the junction ends among
     their unknowns), stepped together; ``junctions`` {name: [(integrator index, end)]}."""
 
-    def __init__(self, integrators, junctions, tolerance, max_iterations=12, min_dt=None):
+    def __init__(self, integrators, junctions, tolerance, max_iterations=12):
         self.integrators = integrators
         self.junctions = junctions
         self.tolerance = tolerance
         self.max_iterations = max_iterations
-        self.min_dt = min_dt or integrators[0].dt / 1024.0
         self.scale = sum(integ.scale for integ in integrators)
         self.newton_iterations = 0
         self.halvings = 0
         self.cache = {}  # times[-1] -> forces per integrator, for ``march`` of each member
+        self.compiled = all(getattr(integ, "marcher", None) is not None for integ in integrators)
         # per integrator: its junction ends as (end, row of the end in the free DOFs, junction)
         self.ends = [[] for _ in integrators]
         for name, members in junctions.items():
@@ -63,42 +63,92 @@ class JunctionSteps:
         return self.cache[key][k]
 
     def march(self, times):
-        """Step every member to each of ``times`` in turn; forces (members, m, 2, 3)."""
+        """Step every member to each of ``times`` in turn; forces (members, m, 2, 3). Compiled
+        (``cablefem.junction_march``) when every member marches compiled; a step the compiled loop
+        stops at goes on here."""
+        times = np.asarray(times, dtype=float)
         forces = np.empty((len(self.integrators), len(times), 2, 3))
-        for i, t in enumerate(times):
+        i = 0
+        while i < len(times):
+            if self.compiled:
+                i += self._march_compiled(times[i:], forces[:, i:])
+                if i == len(times):
+                    break
             try:
-                self.advance(t - self.integrators[0].t)
+                self.advance(times[i] - self.integrators[0].t)
             except ConvergenceError as error:
                 error.forces = forces[0, :i]
                 raise
             for k, integ in enumerate(self.integrators):
                 forces[k, i] = integ.reactions()
+            i += 1
         return forces
 
+    def _march_compiled(self, times, forces):
+        """Compiled steps to ``times`` until done or stopped; the steps taken."""
+        from .junction_march import group_steps
+
+        members = self.integrators
+        problems = []
+        for integ in members:
+            ends, fractions = integ.marcher.ends(integ, times)
+            problems.append(integ.marcher.problem(integ, ends, fractions))
+        n = max(integ.fused.n for integ in members)
+        Z, S, yE = np.zeros((len(members), n, 6)), np.zeros((len(members), 6, 6)), np.zeros((len(members), 6))
+        dq = np.zeros(3 * len(self.junctions))
+        meta = self._meta()
+        _, taken = group_steps(tuple(problems), meta, len(self.junctions), times, forces, Z, S, yE, dq,
+                               self.max_iterations, members[0].MAX_GROWTH)
+        for integ, prob in zip(members, problems):
+            integ.marcher.finish(integ, prob)
+            integ.residual_rows = prob.rows
+        self.newton_iterations = int(sum(integ.counters[1] for integ in members[:1]))
+        return int(taken)
+
+    def _meta(self):
+        """Per member and end slot: the junction end's row in the band order (-1: none), the
+        junction's index and the end's node, (members, 2, 3)."""
+        names = list(self.junctions)
+        meta = np.full((len(self.integrators), 2, 3), -1, dtype=np.int64)
+        for k, ends in enumerate(self.ends):
+            for s, (_, _, name, dof) in enumerate(ends):
+                row = int(np.flatnonzero(self.integrators[k].fused.free_order == dof)[0])
+                meta[k, s] = (row, names.index(name), dof)
+        return meta
+
     def advance(self, target):
-        """Advance by ``target`` [s] in attempts halved on failure."""
-        done, h = 0.0, target
-        while target - done > 1e-9 * target:
-            h = min(h, target - done)
-            if self.attempt(h):
-                done += h
+        """Advance by ``target`` [s] as the compiled loop does: in attempts of whole eighths
+        (``march.FRACTIONS``) of it, halved on failure down to one, doubled after a success."""
+        from .march import FRACTIONS
+
+        start, done, parts = self.integrators[0].t, 0, FRACTIONS
+        last = self.integrators[0].last_h
+        while last and parts > 1 and target * parts / FRACTIONS > self.integrators[0].MAX_GROWTH * last:
+            parts //= 2
+        while done < FRACTIONS:
+            parts = min(parts, FRACTIONS - done)
+            h = target * parts / FRACTIONS
+            if self.attempt(h, start + target * (done + parts) / FRACTIONS):
+                done += parts
+                parts = min(2 * parts, FRACTIONS)
                 continue
             self.halvings += 1
-            h *= 0.5
-            if h < self.min_dt:
+            if parts == 1:
                 integ = self.integrators[0]
                 raise ConvergenceError(
-                    f"junction steps: Newton did not converge at t = {integ.t:.6g} s even with dt = {2 * h:.3g} s "
+                    f"junction steps: Newton did not converge at t = {integ.t:.6g} s even with dt = {h:.3g} s "
                     f"(tolerance {self.tolerance:g}); try a smaller dt or more elements",
                     residual=float("nan"), iterations=self.newton_iterations)
+            parts //= 2
 
     # ------------------------------------------------------------------ one step
-    def attempt(self, h):
-        """One BDF2 step of h of every member, Newton over all at once; True on success."""
+    def attempt(self, h, t1=None):
+        """One BDF2 step of h of every member (its ends where their paths are at ``t1``, default
+        t + h), Newton over all at once; True on success."""
         members = self.integrators
         saved = [integ.snapshot() for integ in members]
         for integ in members:
-            integ.targets = integ.ends_at(integ.t + h)
+            integ.targets = integ.ends_at(integ.t + h if t1 is None else t1)
             integ.begin(h)
             integ.X1 = integ.guess.copy()
         self._agree()
@@ -110,7 +160,7 @@ class JunctionSteps:
             if any(part is None for part in parts):
                 break
             dq = self._junction_steps(parts)
-            largest, residual = 0.0, 0.0
+            largest = 0.0
             for k, (integ, (y, Z, S, rows)) in enumerate(zip(members, parts)):
                 step = y.copy()
                 if self.ends[k]:
@@ -119,9 +169,7 @@ class JunctionSteps:
                     step += (Z @ (S @ (target - yE))).reshape(-1, 3)
                 integ.X1[integ.fem.free_dofs] += step
                 largest = max(largest, float(np.max(np.abs(step))) / integ.increment_tolerance)
-                residual += float(np.linalg.norm(self._interior(k, rows)))
-            residual += sum(float(np.linalg.norm(self._balance(parts, name))) for name in self.junctions)
-            if residual <= self.tolerance * self.scale or largest <= 1.0:
+            if largest <= 1.0:
                 if self._finish(h):
                     return True
                 break
@@ -187,18 +235,6 @@ class JunctionSteps:
 
     def _index(self, k, end):
         return [e for e, _, _, _ in self.ends[k]].index(end)
-
-    def _interior(self, k, rows):
-        """Member k's residual rows but its junction ends (those are the balance's)."""
-        free = self.integrators[k].fem.free_dofs
-        keep = np.ones(len(free), dtype=bool)
-        for _, row, _, _ in self.ends[k]:
-            keep[row] = False
-        return rows[free[keep]]
-
-    def _balance(self, parts, name):
-        """The junction's residual: the sum of its string ends' rows."""
-        return sum(parts[k][3][self.ends[k][self._index(k, end)][3]] for k, end in self.junctions[name])
 
     def _finish(self, h):
         """Accept the step of every member at its X1 (its rows evaluated there); False if one is
