@@ -32,7 +32,7 @@ def network_run(scene, duration):
     integrators = [INTEGRATORS["bdf2"](s, X, boundary_path(scene, line), dt=scene.solver.dt,
                                        anchor=anchor_path(scene, line), **options)
                    for s, line, X in zip(systems, scene.lines, states)]
-    group = junction_steps(scene, integrators)
+    junction_steps(scene, integrators)
     times = np.arange(1, int(round(duration / scene.solver.dt)) + 1) * scene.solver.dt
     start = time.perf_counter()
     for integ in integrators:

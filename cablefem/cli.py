@@ -38,7 +38,8 @@ def write_json(path, data):
 
 
 def solve_scene_static(scene):
-    """Static equilibrium of every line of a scene: (list of LineReport, Newton iterations, results)."""
+    """Static equilibrium of every line of a scene: (list of LineReport, Newton iterations, results).
+    With ``[soil]`` each line follows its pretension path (``cablefem.pretension``)."""
     return static_network(scene)[:3]
 
 
@@ -49,14 +50,18 @@ def static_network(scene):
     from .results import report
     from .statics import solve_line
 
+    def static_system(line):
+        from .run import build_system  # the run module only for networks and soil
+
+        return build_system(scene, line, dynamic=False)
+
     network, coupled = None, set()
     if scene.points or scene.bodies:
         from .coupling import solve_network
         from .network import coupling
-        from .run import build_system
 
         if any(coupling(scene.lines, scene.points, scene.bodies)):
-            network = solve_network(scene, lambda line: build_system(scene, line, dynamic=False),
+            network = solve_network(scene, static_system,
                                     tolerance=scene.solver.tolerance, max_iterations=scene.solver.max_iterations)
             coupled = {k for k, X in enumerate(network.states) if X is not None}
     reports, results, iterations = [], [], 0 if network is None else network.iterations
@@ -68,15 +73,21 @@ def static_network(scene):
             result = StaticResult(X, 0, network.residual, strategy="network",
                                   increment=scale_free_residual(system, X))
         else:
-            system, result = solve_line(line, scene.seabed, scene.contact, scene.environment,
-                                        fit_touchdown=scene.solver.fit_touchdown,
-                                        tolerance=scene.solver.tolerance,
-                                        max_iterations=scene.solver.max_iterations,
-                                        assembly=scene.solver.assembly, sections=scene.load_settings)
+            if "soil" in scene.load_settings:
+                from .pretension import solve_pretension
+
+                system = static_system(line)
+                result = solve_pretension(system, scene.solver.tolerance, scene.solver.max_iterations)
+            else:
+                system, result = solve_line(line, scene.seabed, scene.contact, scene.environment,
+                                            fit_touchdown=scene.solver.fit_touchdown,
+                                            tolerance=scene.solver.tolerance,
+                                            max_iterations=scene.solver.max_iterations,
+                                            assembly=scene.solver.assembly, sections=scene.load_settings)
             iterations += result.iterations
             X = result.X
         results.append(result)
-        reports.append(report(system, X))
+        reports.append(report(system, X, result if "soil" in scene.load_settings else None))
     return reports, iterations, results, network
 
 
@@ -126,6 +137,12 @@ def cmd_static(args):
               + " ".join(f"{x:.6e}" for x in body["moment"]) + " [N m]")
     if network is not None:
         print(f"network: {len(network.history) - 1} outer Newton iterations, balance residual {network.residual:.2e}")
+    for rep, res in zip(reports, results):
+        if rep.soil is not None:
+            mudline = rep.soil["mudline_tension"]
+            print(f"{rep.name:<12} padeye T {rep.soil['padeye_tension']:.6e} N, mudline T "
+                  f"{'-' if mudline is None else f'{mudline:.6e} N'}, embedded {rep.soil['embedded_length']:.3f} m; "
+                  f"{res.strategy}")
     print(f"{iterations} Newton iterations in {wall:.3f} s")
     if args.json:
         write_json(args.json, {**fields,

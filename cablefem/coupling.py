@@ -193,18 +193,15 @@ class Network:
 
     # ---------------------------------------------------------------------- balance
     def balance(self, q, states, places):
-        """The residual (size,) of the nodes' and bodies' balance at q and its Jacobian (size, size),
-        and the node forces {name: F (3,)} of the strings alone."""
+        """The residual (size,) of the nodes' and bodies' balance at q and its Jacobian (size, size)."""
         r, J = np.zeros(self.size), np.zeros((self.size, self.size))
         node_force = {name: np.zeros(3) for name in self.nodes}
         node_stiff = {name: np.zeros((3, self.size)) for name in self.nodes}
-        string_force = {name: np.zeros(3) for name in self.nodes}
         for k in self.coupled:
             forces, stiffness = self.condensed(k, states[k])
             at = {e: name for kk, e, name in self.ends if kk == k}
             for e, F in forces.items():
                 node_force[at[e]] += F
-                string_force[at[e]] += F
                 for e2 in forces:
                     node_stiff[at[e]] += stiffness[(e, e2)] @ places[at[e2]][1]
         for name, node in self.nodes.items():
@@ -223,7 +220,7 @@ class Network:
                 J[o + 3:o + 6, o + 3:o + 6] -= _cross(F) @ T[:, o + 3:o + 6]
         for name in self.bodies:
             self._body_terms(name, q, r, J)
-        return r, J, string_force
+        return r, J
 
     def _body_terms(self, name, q, r, J):
         """A free body's own weight, buoyancy, waterplane and external load into r and J."""
@@ -275,7 +272,7 @@ def solve_network(scene, build, tolerance=1e-8, max_iterations=50):
     scale, length = net.scale(), net.length()
     places = net.place(q)
     iterations = net.solve_strings(places, states, tolerance, max_iterations)
-    r, J, _ = net.balance(q, states, places)
+    r, J = net.balance(q, states, places)
     norm = _norm(r, net, scale, length)
     history = [norm]
     for outer in range(1, max_iterations + 1):
@@ -295,7 +292,7 @@ def solve_network(scene, build, tolerance=1e-8, max_iterations=50):
             except ConvergenceError:
                 lam *= 0.5
                 continue
-            r_t, J_t, _ = net.balance(trial_q, trial_states, trial_places)
+            r_t, J_t = net.balance(trial_q, trial_states, trial_places)
             norm_t = _norm(r_t, net, scale, length)
             if norm_t <= (1.0 - 1e-4 * lam) * norm or np.max(np.abs(lam * step)) <= tolerance * length:
                 accepted = True
@@ -365,7 +362,6 @@ def point_positions(scene, lines_nodes):
         for name, row in zip(line.ends, (0, -1)):
             if name is not None:
                 out[name] = np.asarray(nodes[row], dtype=float)
-        vertex = np.concatenate([[0], np.cumsum([seg.elements for seg in line.segments])])
-        for boundary, joint in line.joints:
-            out.setdefault(joint.name, np.asarray(nodes[vertex[boundary]], dtype=float))
+        for vertex, (_, joint) in zip(line.joint_vertices(), line.joints):
+            out.setdefault(joint.name, np.asarray(nodes[vertex], dtype=float))
     return out

@@ -48,7 +48,9 @@ class LineType:
     length [kg/m]; ``EA`` the axial stiffness [N]; ``damping`` is beta [s] in
     T = EA (e + beta de/dt) (desire2023 Eq. 2), no tension at all where slack; with
     ``damping_when_slack``, MoorDyn-C's law T = EA (max(e, 0) + beta de/dt): the damping part acts in
-    slack segments too (``cablefem.loads.tension``).
+    slack segments too (``cablefem.loads.tension``). ``nominal_diameter`` is the chain's bar
+    diameter d_b [m] that the soil's resistance scales with (rui2025 Eq. 3; None: not given, and
+    a scene with ``[soil]`` refuses it).
     """
 
     name: str
@@ -61,10 +63,13 @@ class LineType:
     Ca_normal: float = 1.0
     Ca_tangential: float = 0.0
     damping_when_slack: bool = False
+    nominal_diameter: float | None = None
 
     def __post_init__(self):
         for key in ("diameter", "mass", "EA"):
             object.__setattr__(self, key, _positive(getattr(self, key), key))
+        if self.nominal_diameter is not None:
+            object.__setattr__(self, "nominal_diameter", _positive(self.nominal_diameter, "nominal_diameter"))
         for key in ("damping", "Cd_normal", "Cd_tangential", "Ca_normal", "Ca_tangential"):
             object.__setattr__(self, key, _positive(getattr(self, key), key, allow_zero=True))
         if not isinstance(self.damping_when_slack, (bool, np.bool_)):

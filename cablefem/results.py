@@ -13,13 +13,17 @@ import numpy as np
 @dataclass
 class LineReport:
     """Per-line results [SI]: forces the line exerts on its ends (3,), their magnitudes,
-    vertex positions (n, 3) anchor first, and the touchdown arc length (None if no contact)."""
+    vertex positions (n, 3) anchor first, the touchdown arc length (None if no contact), the
+    tension at the vertices (n,) and, for a line in soil, ``soil``: the JSON fields of
+    ``embedment`` (padeye, mudline crossing, embedded length) and of its pretension path."""
 
     name: str
     fairlead_force: np.ndarray
     anchor_force: np.ndarray
     nodes: np.ndarray
     touchdown_s: float | None
+    tension: np.ndarray | None = None
+    soil: dict | None = None
 
     @property
     def fairlead_tension(self):
@@ -41,6 +45,8 @@ class LineReport:
             "anchor_tension": self.anchor_tension,
             "nodes": self.nodes.tolist(),
             "touchdown_s": self.touchdown_s,
+            **({} if self.tension is None else {"tension": self.tension.tolist()}),
+            **(self.soil or {}),
         }
 
 
@@ -77,16 +83,86 @@ def touchdown(system, X, samples_per_element=16):
     return float(brentq(gap, a, b, xtol=1e-12 * nodes[-1], rtol=1e-14))
 
 
-def report(system, X):
+def report(system, X, pretension=None):
     """The ``LineReport`` of one line system at state X. On a plane seabed under the anchor the
     touchdown is the resting length that the seabed's reaction carries (well conditioned); else
-    the last point of contact (``touchdown``)."""
+    the last point of contact (``touchdown``). A line in soil adds its ``embedment`` and, given its
+    ``pretension`` result (``cablefem.pretension.PretensionResult``), the path it took."""
     from .statics import anchored_on_plane, resting_length
 
     fairlead, anchor = end_forces(system, X)
     td = resting_length(system, X) if anchored_on_plane(system.line, system.seabed) else None
+    soil = None
+    if system.has("soil"):
+        soil = embedment(system, X, anchor)
+        if pretension is not None:
+            soil["pretension"] = {"installation": pretension.installation, "steps": pretension.steps,
+                                  "halvings": pretension.halvings, "newton_iterations": pretension.iterations,
+                                  "plastic_dissipation_J": float(np.sum(pretension.dissipation))}
     return LineReport(system.line.name, fairlead, anchor, X[: system.fem.n_vertices].copy(),
-                      td if td is not None else touchdown(system, X))
+                      td if td is not None else touchdown(system, X),
+                      node_tension(system, X, np.linalg.norm(anchor), np.linalg.norm(fairlead)), soil)
+
+
+def node_tension(system, X, anchor_tension, fairlead_tension):
+    """Tension [N] at the vertices (n,), anchor first: EA max(|r'| - 1, 0) averaged over the two
+    elements that meet at an interior vertex (r' jumps there), the reactions' magnitudes at the ends."""
+    nodes = system.fem.mesh.p[0]
+    inset = 1e-9 * np.diff(nodes)
+    sides = [nodes[:-1] + inset, nodes[1:] - inset]  # each element's left and right end
+    values = [system.tension_at(X, s) for s in sides]
+    tension = np.empty(len(nodes))
+    tension[1:-1] = 0.5 * (values[1][:-1] + values[0][1:])
+    tension[0], tension[-1] = anchor_tension, fairlead_tension
+    return tension
+
+
+def embedment(system, X, anchor_force):
+    """The soil's JSON fields of a line (DESIGN.md): the force on the padeye (the anchor) and its
+    magnitude, the tension [N] and the angle [deg] between the line and the local surface where the
+    line crosses the seabed surface last (from below, counted from the padeye: where it leaves the
+    soil; None if it never does) and the length [m] of line below the surface."""
+    s, crossings, below = surface_crossings(system, X)
+    leaving = [c for c, up in crossings if up]
+    fields = {"padeye_force": np.asarray(anchor_force).tolist(),
+              "padeye_tension": float(np.linalg.norm(anchor_force)),
+              "mudline_tension": None, "mudline_angle_deg": None, "embedded_length": below}
+    if leaving:
+        at = np.array([leaving[-1]])
+        tangent = system.fem.derivative(X, at)[0]
+        normal = system.seabed.project(system.fem.evaluate(X, at)).direction[0]
+        fields["mudline_tension"] = float(system.tension_at(X, at)[0])
+        fields["mudline_angle_deg"] = float(np.degrees(np.arcsin(np.clip(
+            tangent @ normal / np.linalg.norm(tangent), -1.0, 1.0))))
+    return fields
+
+
+def surface_crossings(system, X, samples_per_element=16):
+    """Where the line crosses the seabed surface: the sample arc lengths (m,), the crossings
+    [(s [m], True if rising out of the soil)] (each refined by root finding) and the length of
+    line below the surface [m]."""
+    from scipy.optimize import brentq
+
+    nodes = system.fem.mesh.p[0]
+    fractions = np.linspace(0.0, 1.0, samples_per_element + 1)[:-1]
+    s = np.append((nodes[:-1, None] + np.diff(nodes)[:, None] * fractions).ravel(), nodes[-1])
+    gap = system.gap_at(X, s)
+    crossings, below, start = [], 0.0, (0.0 if gap[0] < 0.0 else None)
+
+    def at(q):
+        return system.gap_at(X, np.array([q]))[0]
+
+    for k in np.flatnonzero((gap[:-1] < 0.0) != (gap[1:] < 0.0)):
+        a, b = s[k], s[k + 1]
+        root = float(brentq(at, a, b, xtol=1e-12 * nodes[-1], rtol=1e-14)) if at(a) * at(b) < 0 else float(b)
+        rising = gap[k] < 0.0
+        crossings.append((root, rising))
+        if rising and start is not None:
+            below += root - start
+        start = None if rising else root
+    if start is not None:
+        below += float(nodes[-1]) - start
+    return s, crossings, below
 
 
 def sample_arc_lengths(system, per_element=None):
@@ -127,7 +203,7 @@ def line_fields(system, X, V=None, s=None, sampler=None):
     stretch = np.linalg.norm(sampler.derivative(X), axis=1)
     EA = system.props["EA"][element]
     proj = system.seabed.project(points)
-    stiffness = system.contact.stiffness[element, 0]
+    stiffness = system.contact.stiffness[element, 0] if system.has("contact") else 0.0 * element
     contact = (stiffness * np.maximum(-proj.gap, 0.0))[:, None] * proj.direction
     velocity = np.zeros_like(points) if V is None else sampler.evaluate(V)
     fields = {"points": points, "tension": EA * np.maximum(stretch - 1.0, 0.0),
@@ -151,3 +227,4 @@ def history_fields(system, element):
         for name in spec.frames:
             fields[f"{spec.name}_{name}"] = old[spec.name][name].mean(axis=1)[element]
     return fields
+

@@ -23,8 +23,9 @@ from .io.output import (RowsFile, deferred_signals, failure as write_failure, in
                         remove_partials, write_atomic)
 from .io.vtk import TimeSeriesWriter, polyline_mesh
 from .motion import fairlead_motion
-from .network import (NetworkRows, body_reference, check_no_coupling, coupling, dynamic_lines, frame_marks,
-                      junction_ends, line_paths)
+from .coupled_steps import junction_steps
+from .network import check_no_coupling, coupling, dynamic_lines, line_paths
+from .network_output import NetworkRows, body_reference, frame_marks
 from .results import LineSampler, line_fields
 from .statics import solve_static
 from .system import LineSystem
@@ -90,8 +91,13 @@ def start_states(scene, t0=0.0, systems=None):
                                    boundary_path(scene, line)(t0)[0])
             fem = None if systems is None else systems[k].fem
             static = build_system(scene, moved, dynamic=False, fem=fem)
-            result = solve_static(static, tolerance=scene.solver.tolerance,
-                                  max_iterations=scene.solver.max_iterations)
+            if "soil" in scene.load_settings:  # a line in soil starts where its pretension path ends
+                from .pretension import solve_pretension
+
+                result = solve_pretension(static, scene.solver.tolerance, scene.solver.max_iterations)
+            else:
+                result = solve_static(static, tolerance=scene.solver.tolerance,
+                                      max_iterations=scene.solver.max_iterations)
             X, iterations = result.X, iterations + result.iterations
         if systems is not None:
             for rule, (old, new) in static.history.items():
@@ -99,21 +105,6 @@ def start_states(scene, t0=0.0, systems=None):
                 systems[k].history[rule][1][...] = old
         states.append(X)
     return states, iterations
-
-
-def junction_steps(scene, integrators):
-    """Step the strings that meet at junctions together (``cablefem.coupled_steps``): their
-    integrators' ``march`` goes through one ``JunctionSteps``; None without junctions."""
-    ends = junction_ends(scene.lines, scene.points, scene.bodies)
-    if not ends:
-        return None
-    from .coupled_steps import JunctionSteps
-
-    members = sorted({k for pairs in ends.values() for k, _ in pairs})
-    index = {k: i for i, k in enumerate(members)}
-    return JunctionSteps([integrators[k] for k in members],
-                         {name: [(index[k], end) for k, end in pairs] for name, pairs in ends.items()},
-                         scene.solver.tolerance)
 
 
 #: largest rho_inf of generalised-alpha that stayed bounded on a stiff taut line at omega dt >> 1

@@ -274,8 +274,14 @@ def _central_angle(ratio):
 
 def resting_sink(system, weight):
     """Penetration [m] at which the seabed carries a line of submerged weight ``weight`` [N/m]
-    lying on a level bottom: w / (G_K d), with the stiffest element's G_K d."""
-    return max(weight, 0.0) / float(np.max(system.contact.stiffness))
+    lying on a level bottom: w / (G_K d), with the stiffest element's G_K d (0 for a line in soil,
+    which has no contact spring)."""
+    return max(weight, 0.0) / _ground_stiffness(system)
+
+
+def _ground_stiffness(system):
+    """The stiffest element's G_K d [N/m^2]; infinite without a contact load (a line in soil)."""
+    return float(np.max(system.contact.stiffness)) if system.has("contact") else np.inf
 
 
 def _rest_on_seabed(system, X, weight):
@@ -288,6 +294,6 @@ def _rest_on_seabed(system, X, weight):
     points = X[rows]
     proj = seabed.project(points)
     resting = proj.gap <= 1e-9 * length
-    sink = max(weight, 0.0) * proj.direction[:, 2] / float(np.max(system.contact.stiffness))
+    sink = max(weight, 0.0) * proj.direction[:, 2] / _ground_stiffness(system)
     points[resting] = proj.closest[resting] - sink[resting][:, None] * proj.direction[resting]
     X[rows] = points

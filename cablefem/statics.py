@@ -331,7 +331,10 @@ def _scaled(points, dry, buoyancy, factor, X):
 
 
 def _stiffness_continuation(system, X, tolerance, max_iterations, factor=10.0):
-    """Newton through a sequence of seabed stiffnesses rising geometrically to the scene's."""
+    """Newton through a sequence of seabed stiffnesses rising geometrically to the scene's (a line in
+    soil has no contact spring to soften: no continuation)."""
+    if not system.has("contact"):
+        return X, 0, np.inf, [], False
     contact = system.contact
     target_k = contact.stiffness.copy()
     target_c = contact.damping.copy()

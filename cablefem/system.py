@@ -26,12 +26,16 @@ from .loads.tension import axial_tension, strain
 
 
 def element_properties(line):
-    """Per-element line-type properties, each an array of shape (n_elements,)."""
+    """Per-element line-type properties, each an array of shape (n_elements,); ``nominal_diameter``
+    [m] is NaN where a line type does not give it."""
     types = [seg.type for seg in line.segments]
     index = line.element_segments()
     names = ("diameter", "mass", "EA", "damping", "Cd_normal", "Cd_tangential",
              "Ca_normal", "Ca_tangential", "area", "damping_when_slack")
-    return {name: np.array([getattr(t, name) for t in types])[index] for name in names}
+    props = {name: np.array([getattr(t, name) for t in types])[index] for name in names}
+    props["nominal_diameter"] = np.array([np.nan if t.nominal_diameter is None else t.nominal_diameter
+                                          for t in types])[index]
+    return props
 
 
 @dataclass(frozen=True)
@@ -84,6 +88,10 @@ class LineSystem:
             if catalog.spec_of(load).name == name:
                 return load
         raise KeyError(f"line '{self.line.name}' has no '{name}' load")
+
+    def has(self, name):
+        """Whether the system has a load of catalog name ``name``."""
+        return any(catalog.spec_of(load).name == name for load in self.loads)
 
     tension = property(lambda self: self.load("tension"))
     weight = property(lambda self: self.load("weight"))
@@ -243,12 +251,16 @@ class LineSystem:
     def energy(self, X):
         """Total potential energy [J] of the static loads at X (N, 3): strain energy, weight and
         the seabed spring k min(d_G, 0)^2 / 2, whose gradient is the static residual (exactly on
-        planes and grids, to the projection's own accuracy on vertex-normal meshes)."""
+        planes and grids, to the projection's own accuracy on vertex-normal meshes); with soil,
+        its springs' merit function (``Soil.energy``: no potential, the soil keeps history)."""
         state = self.state(X)
         total = np.sum(self.tension.energy(state.reduced) * self.fem.reduced.dx)
         total += np.sum(self.weight.energy(state) * self.fem.full.dx)
-        gap = self.seabed.gap_only(state.r.reshape(3, -1).T).reshape(self.fem.full.s.shape)
-        total += np.sum(0.5 * self.contact.stiffness * np.minimum(gap, 0.0) ** 2 * self.fem.full.dx)
+        if self.has("contact"):
+            gap = self.seabed.gap_only(state.r.reshape(3, -1).T).reshape(self.fem.full.s.shape)
+            total += np.sum(0.5 * self.contact.stiffness * np.minimum(gap, 0.0) ** 2 * self.fem.full.dx)
+        if self.has("soil"):
+            total += np.sum(self.load("soil").energy(state) * self.fem.full.dx)
         for load in self.loads:
             if getattr(load, "rule", "full") == "node":
                 total += load.energy(X[load.vertices, 2])

@@ -107,6 +107,8 @@ def anchored_on_plane(line, seabed):
 def resting_length(system, X):
     """Arc length [m] from the anchor that the seabed's reaction (contact force plus the anchor's
     normal reaction) can carry at the line's normal weight, on a plane seabed; None without contact."""
+    if not system.has("contact"):
+        return None
     state = system.state(X)
     normal = system.seabed.normal
     force = system.contact.evaluate(state, jacobian=False).force

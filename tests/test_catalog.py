@@ -11,13 +11,20 @@ from cablefem.fused import FusedEvaluator, pack_params
 from cablefem.geometry import Plane
 from cablefem.loads import catalog
 from cablefem.line import Joint, Segment
+from cablefem.loads.current import CurrentProfile
 from cablefem.loads.friction import IsotropicFriction
 from cablefem.scene import Contact
 from cablefem.system import LineSystem
 
-from test_loads import assert_tangent_matches_finite_differences, line_state, system_with_all_loads
+from test_loads import (assert_tangent_matches_finite_differences, line_state, soil_state, soil_system,
+                        system_with_all_loads)
 
-NAMES = [spec.name for spec in catalog.CATALOG]
+#: every catalog load, and the two that see the current once more in a current varying with depth
+NAMES = [spec.name for spec in catalog.CATALOG] + ["drag+profile", "points+profile"]
+#: a sheared current over the test line's heights (about -100 m to the surface, the clump near the
+#: seabed and the buoy at the surface both on a sloping piece), bending at four heights
+PROFILE = CurrentProfile.from_arrays([-130.0, -70.0, -30.0, 5.0],
+                                     [[0.1, 0.0, 0.0], [0.4, -0.2, 0.02], [0.9, 0.3, 0.0], [1.4, 0.1, -0.05]], "test")
 SEABED = Plane.from_slope([-600.0, 0.0, -100.0], np.radians(20.0), np.pi / 2)
 LAW = IsotropicFriction(0.3, 1.2, 0.05)
 
@@ -25,8 +32,11 @@ LAW = IsotropicFriction(0.3, 1.2, 0.05)
 def one_load_system(name, order):
     """The soft rope of test_loads with drag, added mass, contact and friction, keeping one load;
     for the point loads, the rope in two segments with a clump weight at their joint and a buoy at
-    its free fairlead end, half out of the water."""
-    system = system_with_all_loads(SEABED, LAW, order)
+    its free fairlead end, half out of the water; the soil, whose points lie below the seabed, on its
+    own line (``test_loads.soil_system``). '+profile': the same load in a sheared current."""
+    name, _, profile = name.partition("+")
+    system = (soil_system(SEABED, order) if name == "soil"
+              else system_with_all_loads(SEABED, LAW, order, profile=PROFILE if profile else None))
     if name == "points":
         line = system.line
         seg = line.segments[0]
@@ -38,6 +48,11 @@ def one_load_system(name, order):
     loads = [load for load in system.loads if catalog.spec_of(load).name == name]
     system.loads = loads[-1:]  # contact: the test's own (the catalog's has no stiffness here)
     return system
+
+
+def load_state(system, name, rng):
+    """(state, X, V, A) of a test state for load ``name``, away from its kinks."""
+    return soil_state(system, rng) if name == "soil" else line_state(system, rng, LAW)
 
 
 def reference(system, X, V, A, v_x, a_x):
@@ -53,7 +68,7 @@ def reference(system, X, V, A, v_x, a_x):
 @pytest.mark.parametrize("name", NAMES)
 def test_compiled_face_equals_the_numpy_face(name, order, rng):
     system = one_load_system(name, order)
-    state, X, V, A = line_state(system, rng, LAW)
+    state, X, V, A = load_state(system, name, rng)
     fused = FusedEvaluator.for_system(system, system.props["mass"])
     rows_ref, K_ref = reference(system, X, V, A, 150.0, 2.2e4)
     rows, band = fused.evaluate(X, V, A, 150.0, 2.2e4)
@@ -66,7 +81,7 @@ def test_compiled_face_equals_the_numpy_face(name, order, rng):
 @pytest.mark.parametrize("name", NAMES)
 def test_numpy_face_tangent_matches_finite_differences(name, order, rng):
     system = one_load_system(name, order)
-    state, X, V, A = line_state(system, rng, LAW)
+    state, X, V, A = load_state(system, name, rng)
 
     assert_tangent_matches_finite_differences(system, state, X, V, A, rng.standard_normal((2, *X.shape)))
 

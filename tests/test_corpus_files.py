@@ -43,7 +43,7 @@ MOORDYN = [
     moordyn("unstrlen-huge", "LINES.1.UnstrLen: 1e+300 m is beyond", {ROW_CHAIN: ROW_CHAIN.replace("500.0", "1e300")}),
     moordyn("EA-1e308", "line 6: LINE TYPES.chain.EA: 1e+308 N is beyond the sane limit", {"1.23e9": "1e308"}),
     moordyn("EA-inf", "LINE TYPES.chain.EA: must be finite", {"1.23e9": "inf   "}),
-    moordyn("EA-nonlinear", "not supported yet", {"1.23e9": "1.23e9|5e8"}),
+    moordyn("EA-nonlinear", "'1.23e9|5e8' is not supported: give constant EA and BA", {"1.23e9": "1.23e9|5e8"}),
     moordyn("diam-nan", "LINE TYPES.chain.Diam: must be finite", {"0.216 ": "nan   "}),
     moordyn("diam-huge", "LINE TYPES.chain.Diam: 1000 m is beyond", {"0.216 ": "1e3   "}),
     moordyn("mass-negative", "LINE TYPES.chain.MassDen: must be > 0", {"286.6": "-286.6"}),
@@ -70,9 +70,13 @@ MOORDYN = [
             {"3      Coupled": "3      Floating"}),
     moordyn("duplicate-point", "line 12: POINTS.1: duplicate point ID", {"2      Free": "1      Free"}),
     moordyn("short-row", "line 17: LINES: expected 6 columns", {ROW_CHAIN: "1     chain       1        2"}),
-    moordyn("free-with-mass", "free point with mass 500 kg",
-            {"-700.0    0.0   -700.0   0      0": "-700.0    0.0   -700.0   500    0"}),
-    moordyn("rods", "line 14: RODS: not supported yet", {"---------------------- LINES": "---------------------- RODS "
+    moordyn("body-singular-inertia", "line 9: BODIES.1: a free body needs three moments of inertia > 0",
+            {"---------------------- POINTS": "---------------------- BODIES ---\n1 free 0 0 -5 0 0 0 1e4 0 0 0 0 0\n"
+             "---------------------- POINTS"}),
+    moordyn("unused-point", "line 14: POINTS.4: no line uses this point",
+            {"-14.0    0      0        0     0\n": "-14.0    0      0        0     0\n4 Free 0 0 -10 0 0 0 0\n"}),
+    moordyn("rods", "line 14: RODS: RODS (rigid rods, and lines attached to rod ends R1A, R1B) is not supported",
+            {"---------------------- LINES": "---------------------- RODS "
             "------\nID RodType\n(#) (name)\n1 rod 0 0 0 1 1 1 10 -\n---------------------- LINES"}),
     moordyn("seafloor-missing", "line 21: OPTIONS.SeafloorFile: file not found",
             {"850.0     WtrDpth": "bathy.txt SeafloorFile"}),

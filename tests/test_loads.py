@@ -328,15 +328,17 @@ ROPE = LineType("rope", diameter=0.15, mass=40.0, EA=2.0e6, damping=0.05, Cd_nor
                 Cd_tangential=0.4, Ca_normal=1.0, Ca_tangential=0.5)
 
 
-def system_with_all_loads(seabed, law, order):
+def system_with_all_loads(seabed, law, order, profile=None):
     """A soft rope (so that tension does not swamp the other loads' share of the tangent) with
-    drag in a current, added mass and contact with friction; LineSystem's own contact is off."""
+    drag in a current (uniform, or ``profile``), added mass and contact with friction; LineSystem's
+    own contact is off."""
     line = make_line(ROPE, order, elements=12, length=590.0)  # taut: every point stretched >= 1.7 %
-    env = Environment(current=(0.2, 0.1, 0.0))
+    env = Environment(current=(0.2, 0.1, 0.0), current_profile=profile)
     nel = line.segments[0].elements
     props = dict(diameter=np.full(nel, ROPE.diameter), mass=np.full(nel, ROPE.mass))
     contact = SeabedContact(seabed, 3e5 * props["diameter"], contact_damping(Contact(), props), friction=law)
-    loads = (Drag(props["diameter"], np.full(nel, 2.0), np.full(nel, 0.4), env.water_density, env.current),
+    loads = (Drag(props["diameter"], np.full(nel, 2.0), np.full(nel, 0.4), env.water_density, env.current,
+                  profile=profile),
              AddedMass(props["diameter"], np.full(nel, 1.0), np.full(nel, 0.5), env.water_density),
              contact)
     return LineSystem(line, seabed, Contact(stiffness=0.0), env, extra_loads=loads)
@@ -403,3 +405,66 @@ def assert_tangent_matches_finite_differences(system, state, X, V, A, directions
             fd = (plus - minus) / (2 * h)
             # O(h^2) truncation and ~1e-16 |R| / h round-off, both < 1e-6 of |K d|
             np.testing.assert_allclose(matrix @ d.ravel(), fd, rtol=0, atol=1e-6 * np.abs(fd).max())
+
+
+# ---------------------------------------------------------------- soil (points below the surface)
+#: the soil of the tests: rope bar diameter 0.15 m, su = 2 kPa + 1.5 kPa/m, rui2025's widths and N_c 7.6
+SOIL_BAR = 0.15
+
+
+def soil_system(seabed, order):
+    """The soft rope of ``system_with_all_loads`` with the soil as its only load besides tension
+    and weight (no contact: a line in soil has none)."""
+    from cablefem.loads.soil import Soil
+
+    line = make_line(ROPE, order, elements=12, length=590.0)
+    nel = line.segments[0].elements
+    soil = Soil(seabed, np.full(nel, 8.0 * SOIL_BAR), np.full(nel, 2.5 * 7.6 * SOIL_BAR), 1.0 / SOIL_BAR,
+                2.0 / SOIL_BAR, 2.0e3, 1.5e3, np.full(nel, SOIL_BAR))
+    return LineSystem(line, seabed, Contact(stiffness=0.0), Environment(), extra_loads=[soil])
+
+
+def soil_margins(system, soil):
+    """Distances [m] of every point from the soil's kinks: depth 0 and d_b, |e_t| = 1/k_t,
+    |e_n| = 1/k_n; and the counts of elastic and plastic points along and across."""
+    state = system.state(np.asarray(system._soil_X))
+    depth, _ = soil.depth(state.r)
+    e_t, _, _, _, _, _, size, _, _ = soil.offsets(state)
+    margins = {"surface": np.abs(depth).min(), "engaged": np.abs(depth - soil.ramp).min(),
+               "tangential": np.abs(np.abs(e_t) - 1.0 / soil.k_t).min(),
+               "normal": np.abs(size - 1.0 / soil.k_n).min()}
+    below = depth > 0.0
+    counts = [np.count_nonzero(below & (np.abs(soil.k_t * e_t) < 1)), np.count_nonzero(below & (np.abs(soil.k_t * e_t) > 1)),
+              np.count_nonzero(below & (soil.k_n * size < 1)), np.count_nonzero(below & (soil.k_n * size > 1)),
+              np.count_nonzero(below & (depth < soil.ramp)), np.count_nonzero(~below)]
+    return margins, counts
+
+
+def soil_state(system, rng, attempts=20):
+    """X with its first half 0-1.2 m below the seabed (some points inside the top d_b, some above
+    the surface), rising to the fairlead; committed anchors offset from the full points by 0.03-3
+    yield offsets, so that points are elastic and plastic along and across the line. Returns
+    (state, X, V, A) away from the kinks (``soil_margins`` > MARGIN), V and A random."""
+    fem, seabed = system.fem, system.seabed
+    soil = system.load("soil")
+
+    def positions(s):
+        f = s / system.line.unstretched_length
+        x, y = -600.0 + 600.0 * f, 3.0 * np.sin(3 * np.pi * f)
+        bed = seabed.elevation(np.column_stack([x, y]))
+        rise = np.clip((f - 0.5) / 0.5, 0.0, None) ** 2 * -seabed.elevation(np.zeros((1, 2)))
+        return np.column_stack([x, y, bed - 0.55 - 0.6 * np.sin(7 * np.pi * f) + rise])
+
+    X = fem.interpolate(positions)
+    system._soil_X = X
+    r = fem.full.interpolate(X)[0].reshape(fem.full.s.shape + (3,))
+    old, new = system.history["full"]
+    for _ in range(attempts):
+        scale = 10.0 ** rng.uniform(-1.5, 0.5, r.shape[:2] + (1,)) * SOIL_BAR
+        old["soil"]["anchor"] = r + scale * rng.standard_normal(r.shape)
+        new[...] = old
+        margins, counts = soil_margins(system, soil)
+        if min(margins.values()) > MARGIN and min(counts) > 0:
+            V, A = rng.standard_normal(X.shape), rng.standard_normal(X.shape)
+            return system.state(X, V, A), X, V, A
+    raise AssertionError(f"no soil test state away from the kinks in {attempts} draws: {margins}, {counts}")

@@ -260,7 +260,7 @@ every = 3.0
     assert summary["completed"]
     import meshio
 
-    from cablefem.network import body_reference
+    from cablefem.network_output import body_reference
 
     frame = meshio.read(sorted((tmp_path / "out").glob("net_*.vtu"))[-1])  # at t = 3 s
     kinds = np.concatenate(frame.cell_data["network"])

@@ -319,36 +319,50 @@ def test_base_of_the_bad_toml_table_is_valid(tmp_path):
 
 BAD_MOORDYN = [
     ({"---------------------- LINES": "---------------------- RODS ------\nID RodType\n(#) (name)\n"
-      "1 rod 0 0 0 1 1 1 10 -\n---------------------- LINES"}, "line 14: RODS", "not supported yet"),
+      "1 rod 0 0 0 1 1 1 10 -\n---------------------- LINES"}, "line 14: RODS",
+     "is not supported: model a rod as a short stiff line"),
     ({"---------------------- POINTS": "---------------------- BODIES ------\n1 free 0 0 0 0 0 0 1000 0 0 0 0 0"
-      "\n---------------------- POINTS"}, "line 8: BODIES", "not supported yet"),
-    ({"2      Free        -700.0    0.0   -700.0   0      0":
-      "2      Free        -700.0    0.0   -700.0   500    0"}, "line 12: POINTS.2",
-     "free point with mass 500 kg / volume 0 m^3 is not supported yet"),
-    ({"2     polyester   3        2        1000.0    40       -":
-      "2     polyester   3        2        1000.0    40       -\n3     polyester   1        2        900.0    40       -"},
-     "line 12: POINTS.2", "free point joining 3 line ends is not supported yet"),
+      "\n---------------------- POINTS"}, "line 9: BODIES.1", "three moments of inertia > 0"),
+    ({"---------------------- POINTS": "---------------------- BODIES ------\n1 free 0 0 0 0 0 0 1000 0 1e6 0 0 0"
+      "\n---------------------- POINTS", "3      Coupled": "3      Body2  "}, "line 15: POINTS.3.Attachment",
+     "no body 2 in BODIES (Body1)"),
+    ({"---------------------- POINTS": "---------------------- BODIES ------\n1 floating 0 0 0 0 0 0 1 0 1 0 0 0"
+      "\n---------------------- POINTS"}, "line 9: BODIES.1.Attachment", "unknown attachment 'floating'"),
+    ({"---------------------- POINTS": "---------------------- BODIES ------\n1 free 0 0 0 0 0 0 1 1|2 1 0 0 0"
+      "\n---------------------- POINTS"}, "line 9: BODIES.1.CG", "expected 1 or 3 numbers"),
+    ({"-14.0    0      0        0     0\n": "-14.0    0      0        0     0\n4      Free   0 0 -10 0 0 0 0\n"},
+     "line 14: POINTS.4",
+     "no line uses this point"),
     ({"1.23e9": "-1.23e9"}, "line 6: LINE TYPES.chain.EA", "must be > 0"),
     ({"0.216 ": "nan   "}, "line 6: LINE TYPES.chain.Diam", "must be finite"),
-    ({"1.23e9    -0.8 ": "1.23e9|5e8 -0.8 "}, "line 6: LINE TYPES.chain.EA", "not supported yet"),
+    ({"1.23e9    -0.8 ": "1.23e9|5e8 -0.8 "}, "line 6: LINE TYPES.chain.EA",
+     "nonlinear or viscoelastic EA or BA (a curve file or 'a|b' values): '1.23e9|5e8' is not supported: give"),
     ({"1        2        500.0     20": "1        2        -500.0    20"}, "line 17: LINES.1.UnstrLen", "must be > 0"),
     ({"1        2        500.0     20": "1        2        500.0     0 "}, "line 17: LINES.1.NumSegs", "at least 1"),
     ({"1     chain       1": "1     chian       1"}, "line 17: LINES.1.LineType", "unknown line type 'chian'"),
     ({"1     chain       1        2": "1     chain       1        7"}, "line 17: LINES.1.AttachB", "no point '7'"),
     ({"1     chain       1        2": "1     chain       R1A      2"}, "line 17: LINES.1.AttachA",
-     "RODS are not supported yet"),
+     "attached to rod end 'R1A' is not supported"),
+    ({"1     chain       1        2": "1     chain       P1       Q2"}, "line 17: LINES.1.AttachB", "no point 'Q2'"),
     ({"3      Coupled": "3      Floating"}, "line 13: POINTS.3.Attachment", "unknown attachment 'Floating'"),
-    ({"3      Coupled": "3      Body1  "}, "line 13: POINTS.3", "BODIES are not supported yet"),
-    ({"3      Coupled": "3      Fixed  "}, "line 17: LINES.1+2", "runs between a fixed and a fixed point"),
+    ({"3      Coupled": "3      Body1  "}, "line 13: POINTS.3.Attachment", "no body 1 in BODIES (none defined)"),
+    ({"3      Coupled": "3      Turbine1"}, "line 13: POINTS.3.Attachment", "FAST.Farm turbine"),
+    ({"-14.0    0      0        0     0": "-14.0    0      0   0 0 5e3  0     0"}, "line 13: POINTS.3.FX",
+     "a steady external force on a point"),
+    ({"850.0     WtrDpth": "850.0     WtrDpth\n1   WaveKin"}, "line 22: OPTIONS.WaveKin", "set WaveKin 0"),
+    ({"850.0     WtrDpth": "850.0     WtrDpth\n2   Currents"}, "line 22: OPTIONS.Currents",
+     "a time-varying or gridded current (Currents 2 to 5): Currents 2 is not supported"),
+    ({"850.0     WtrDpth": "850.0     WtrDpth\n1   Currents"}, "line 22: OPTIONS.Currents (current_profile.txt)",
+     "file not found"),
     ({"850.0     WtrDpth": "bathy.txt SeafloorFile"}, "line 21: OPTIONS.SeafloorFile", "file not found"),
     ({"850.0     WtrDpth\n": ""}, "OPTIONS.WtrDpth", "missing"),
     ({"3.0e6     kBot": "-3.0e6    kBot"}, "line 22: OPTIONS.kBot", "must be > 0"),
     ({"-1130.0": "-2000.0"}, "line 17: LINES.1+2", "would need an absurd strain of"),
     ({"1        2        500.0     20       -": "1        2        500.0"}, "line 17: LINES",
      "expected 6 columns"),
-    ({"ID     Attachment  X         Y     Z        M      V        CdA   CA":
-      "Node   Type        X         Y     Z        M      V        FX    FY   FZ   CdA   CA"},
-     "line 9: POINTS", "MoorDyn v1 columns"),
+    ({"ID    LineType    AttachA  AttachB  UnstrLen  NumSegs  Outputs":
+      "Line  LineType    UnstrLen NumSegs  NodeAnch  NodeFair Outputs"},
+     "line 15: LINES", "the MoorDyn v1 LINES columns"),
     ({"--------------------------- OUTPUTS": "--- CURRENT PROFILE ---\n0.0 0.5 0.0\n--- OUTPUTS"},
      "line 24: CURRENT PROFILE", "unrecognised section"),
 ]

@@ -210,7 +210,7 @@ solver.tolerance = [1e-8, 1e-30]    # 1e-30: Newton cannot get there
 
 @pytest.mark.parametrize("text, message", [
     ('[axes]\n"motion.period" = [6.0, -8.0]', "case 1 (motion.period = -8.0): motion.period: must be > 0, got -8"),
-    ('[axes]\n"soil.su_gradient" = [1500.0]', "case 0 (soil.su_gradient = 1500.0): soil: unknown key"),
+    ('[axes]\n"trench.depth" = [1.5]', "case 0 (trench.depth = 1.5): trench: unknown key"),
     ('combine = "zip"\n[axes]\n"motion.period" = [6.0, 8.0]\n"solver.dt" = [0.01]',
      "axes.solver.dt: has 1 values where the keys it is zipped with have 2"),
     ('[axes]\n"lines[3].order" = [1]', "case 0 (lines[3].order = 1): lines[3].order: index 3 out of range"),

@@ -9,9 +9,13 @@ once for TOML and MoorDyn scenes alike (``cablefem.io.load_scene``), and by
   tensions.csv columns;
 - settings that exclude each other (adaptive steps need BDF2);
 - problem size: the nodes of all lines, the steps and frames of a run;
-- the line ends against the water and the seabed: no seabed above the still
-  water surface below a line end, no anchor above it, no anchor or fairlead
-  below the seabed (a padeye may lie there only with ``[soil]``, not read yet);
+- the line ends against the water and the seabed: no seabed above the still water surface below a
+  line end, no anchor above it, no anchor or fairlead below the seabed (a padeye may lie there only
+  with ``[soil]``);
+- a scene with ``[soil]`` (``check_soil``): a soil with some strength, lines between a fixed padeye
+  and a fairlead (no free end, no points on them), every line type's ``nominal_diameter``, each
+  padeye on or below the seabed surface (the laid line starts from it up or down to the lying
+  chain), and a line long enough to be laid;
 - the prescribed motion over its whole course, not only at rest: the peak
   chord strain of every line, the peak speed and acceleration of the fairlead.
 
@@ -54,6 +58,7 @@ def check_scene(scene):
     check_size(scene)
     check_run(scene)
     check_ends(scene)
+    check_soil(scene)
     check_motion(scene)
     return scene
 
@@ -120,14 +125,48 @@ def check_ends(scene):
             raise _error(scene, f"lines[{i}].anchor", f"z = {line.anchor[2]:g} m is above the still "
                          "water surface (z = 0): an anchor lies in the water or on the seabed")
         gap = np.asarray(scene.seabed.gap_only(ends), dtype=float)
+        in_soil = "soil" in scene.load_settings
         for end, depth, segment in (("anchor", -gap[0], line.segments[0]),
                                     ("fairlead", -gap[1], line.segments[-1])):
             allowed = segment.type.diameter + 1e-9 * max(1.0, float(np.max(np.abs(ends))))
-            if depth > allowed:
-                soil = (": a padeye below the seabed needs a [soil] table, which cablefem does not "
-                        "read yet") if end == "anchor" else ""
+            if depth > allowed and not (end == "anchor" and in_soil):
+                soil = ": a padeye below the seabed needs a [soil] table" if end == "anchor" else ""
                 raise _error(scene, f"lines[{i}].{end}", f"the {end} lies {depth:.6g} m below the "
                              f"seabed (more than the line's diameter, {segment.type.diameter:g} m){soil}")
+
+
+def check_soil(scene):
+    """With ``[soil]``: some strength (su_mudline and su_gradient not both 0), every line type's
+    ``nominal_diameter`` given, each padeye on the seabed surface or below it (within its line's
+    diameter), each line longer than the climb from its padeye to the surface."""
+    keys = scene.load_settings.get("soil")
+    if keys is None:
+        return
+    if keys.get("su_mudline", 0.0) == 0.0 and keys["su_gradient"] == 0.0:
+        raise _error(scene, "soil.su_gradient", "su_mudline and su_gradient are both 0: a soil without "
+                     "strength holds nothing (the line would sink without end)")
+    for i, line in enumerate(scene.lines):
+        if not all(line.prescribed) or line.joints:
+            raise _error(scene, f"lines[{i}]", f"line '{line.name}' has a free end or points on it: the "
+                         "pretension path of [soil] moves one line between a fixed padeye and its fairlead "
+                         "(networks in soil are not supported yet)")
+        for j, segment in enumerate(line.segments):
+            if segment.type.nominal_diameter is None:
+                raise _error(scene, f"line_types.{segment.type.name}.nominal_diameter", "missing: [soil] needs "
+                             f"the chain's bar diameter d_b of line type '{segment.type.name}' (used by "
+                             f"lines[{i}].segments[{j}]): the soil's resistance scales with it (rui2025 Eq. 3)")
+        depth = -float(scene.seabed.gap_only(line.anchor[None])[0])
+        diameter = line.segments[0].type.diameter
+        if depth < -diameter:
+            raise _error(scene, f"lines[{i}].anchor", f"the anchor (padeye) lies {-depth:.6g} m above the "
+                         f"seabed (more than the line's diameter, {diameter:g} m): with [soil] a padeye lies "
+                         "on or below the seabed surface, where the laid line starts from it")
+        if depth >= line.unstretched_length:
+            raise _error(scene, f"lines[{i}].segments", f"the line's {line.unstretched_length:g} m do not reach "
+                         f"from the padeye {depth:.6g} m below the seabed to its surface: nothing to lay")
+    if scene.friction.model != "none":
+        scene.notes.append("friction: [friction] does not act on lines in [soil]: the soil's tangential "
+                           "resistance is their friction (docs/scene.md, [soil])")
 
 
 def check_motion(scene):

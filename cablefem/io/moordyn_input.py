@@ -1,15 +1,20 @@
 """MoorDyn v2 input files (MoorDyn-C 2.x layout) read into a cablefem Scene.
 
-Sections read: LINE TYPES, POINTS, LINES, OPTIONS (value first: ``850 WtrDpth``)
-and OUTPUTS (channel names, up to ``END``, recorded and ignored). Rows before
-the first recognised ``---`` header are the title (``moordyn_sections`` cuts the
-file). RODS, BODIES, ROD TYPES, FAILURE or any unrecognised section that holds
-rows is refused by name. Numbers and IDs are ASCII (``str.isdigit`` and ``float``
-would take other scripts' digits) and within the sane limits of ``validate.LIMITS``.
+Sections read: LINE TYPES (v2 columns, or the v1 header read by position as MoorDyn-C reads it),
+BODIES, POINTS, LINES, OPTIONS (value first: ``850 WtrDpth``) and OUTPUTS (channel names, up to
+``END``, recorded and ignored). Rows before the first recognised ``---`` header are the title
+(``moordyn_sections`` cuts the file). What cablefem does not read (RODS, wave kinematics, nonlinear
+EA, ...) is refused with what to do instead, from the one list ``moordyn_sections.REFUSED``. Numbers
+and IDs are ASCII (``str.isdigit`` and ``float`` would take other scripts' digits) and within the
+sane limits of ``validate.LIMITS``.
 
 Mapping (each conversion checked against the MoorDyn 2.7 library, docs/scene.md):
-- every chain of MoorDyn lines joined through massless free points that join
-  exactly two lines becomes ONE multi-segment ``Line``, anchor (Fixed end) first;
+- BODIES and POINTS become ``cablefem.network`` Bodies and Points (``moordyn_network``), each
+  MoorDyn line a ``Line`` between two of them; ``network.strings`` joins lines through free points
+  that join exactly two line ends into ONE multi-segment line named ``line1+2``, its most fixed end
+  first. Junctions of three or more line ends and free bodies are read as they are: the statics
+  solve them (``cablefem.coupling``), a run refuses what it cannot step (``network.check_no_coupling``);
+- ``Currents 1``: the steady profile of ``current_profile.txt`` beside the file (``io.currents``);
 - BA >= 0 is the internal damping coefficient [N s]: beta = BA / EA [s];
   BA < 0 is -zeta, MoorDyn's BA = zeta (UnstrLen / NumSegs) sqrt(EA m);
 - CdAx refers to the surface area pi d l, desire2023 Eq. 3 to d: Cd_tangential = pi CdAx;
@@ -27,21 +32,22 @@ and the note says which model was chosen.
 import math
 import os
 import re
-
-import numpy as np
+from dataclasses import replace
 
 from ..errors import InputError
 from ..geometry import Horizontal, choose_seabed
-from ..geometry.readers import is_integer, is_number, parse_number
+from ..geometry.readers import is_number
 from ..line import Line, LineType, Segment
+from ..network import point_position, strings as network_strings
 from ..scene import Contact, Environment, Friction, Scene, Solver
 from . import validate as v
-from .moordyn_sections import TABLE_COLUMNS, at as _at, parse_sections, split_sections
+from .currents import MOORDYN_FILE, read_current_profile
+from .moordyn_network import line_end, read_bodies, read_points
+from .moordyn_sections import TABLE_COLUMNS, at as _at, parse_sections, refuse, split_sections, value as _value
 
-FIXED = ("ANCHOR", "FIXED", "FIX")
-COUPLED = ("VESSEL", "VES", "COUPLED", "CPLD", "FAIRLEAD")
-FREE = ("CONNECT", "CON", "FREE")
 NO_MOTION_NOTE = "MoorDyn files have no fairlead motion: coupled points stay fixed"
+BODY_NO_MOTION_NOTE = ("MoorDyn files have no body motion: coupled bodies stay where the file puts them (a TOML "
+                       "that wraps the file gives [bodies.NAME.motion])")
 #: MoorDyn-C 2.x defaults of the options cablefem uses (g and kBot measured with the library)
 OPTION_DEFAULTS = {"wtrdnsty": 1025.0, "g": 9.80665, "kbot": 3.0e6, "cbot": 3.0e5,
                    "frictioncoefficient": 0.0, "fricdamp": 200.0, "statdynfricscale": 1.0}
@@ -49,7 +55,7 @@ _COEFFICIENT = v.limited(v.non_negative, "coefficient")
 LINE_TYPE_CHECKS = {"Diam": v.limited(v.positive, "diameter"), "MassDen": v.limited(v.positive, "mass"),
                     "EA": v.limited(v.positive, "EA"), "BA/-zeta": v.number, "EI": v.non_negative,
                     "Cd": _COEFFICIENT, "Ca": _COEFFICIENT, "CdAx": _COEFFICIENT, "CaAx": _COEFFICIENT}
-OPTION_ALIASES = {"rhow": "wtrdnsty", "gravity": "g"}
+OPTION_ALIASES = {"rhow": "wtrdnsty", "rho": "wtrdnsty", "gravity": "g", "kb": "kbot", "cb": "cbot"}
 OPTION_CHECKS = {"wtrdpth": v.limited(v.positive, "length"),
                  "wtrdnsty": v.limited(v.positive, "water_density"),
                  "g": v.limited(v.positive, "gravity"), "kbot": v.limited(v.positive, "stiffness"),
@@ -57,21 +63,18 @@ OPTION_CHECKS = {"wtrdpth": v.limited(v.positive, "length"),
                  "frictioncoefficient": v.limited(v.non_negative, "friction"),
                  "fricdamp": v.limited(v.positive, "friction_damping"),
                  "statdynfricscale": v.limited(v.positive, "friction"), "dtm": v.positive,
-                 "tmax": v.positive}
-_COORDINATE = v.limited(v.number, "coordinate")
+                 "tmax": v.positive, "currents": v.number, "wavekin": v.number}
 _WHOLE = re.compile(r"-?[0-9]+")  # ASCII digits only: str.isdigit() takes '\u00b2', which int() refuses
+#: v1 LINE TYPES header names and the quantity MoorDyn-C reads at their positions (7-10)
+V1_NOTE = ("LINE TYPES (line {row}): MoorDyn v1 column names (Can Cat Cdn Cdt); read by position as "
+           "MoorDyn-C reads them: the 7th column as Cd (normal drag), the 8th as Ca, the 9th as CdAx, the 10th "
+           "as CaAx, whatever the header says")
 
 
-def _value(token, number, key, check=v.number):
-    """A checked number from a file token; the error names the file line and the column."""
-    value = parse_number(token)
-    if value is None:
-        raise InputError(f"expected a number, got '{token}'", key=_at(number, key))
-    return check(value, _at(number, key))
-
-
-def _line_types(rows, notes):
+def _line_types(rows, v1, notes):
     """Raw line types by name: dict name -> (row number, dict of floats)."""
+    for row in v1:
+        notes.append(V1_NOTE.format(row=row))
     types = {}
     for number, fields in rows:
         name = fields[0]
@@ -80,8 +83,7 @@ def _line_types(rows, notes):
             raise InputError("duplicate line type name", key=_at(number, key))
         for column, token in zip(("EA", "BA/-zeta"), fields[3:5]):
             if "|" in token or not is_number(token):
-                raise InputError(f"nonlinear or viscoelastic {column} ('{token}') is not supported yet",
-                                 key=_at(number, f"{key}.{column}"))
+                refuse("nonlinear", _at(number, f"{key}.{column}"), f"'{token}'")
         values = {col: _value(tok, number, f"{key}.{col}", LINE_TYPE_CHECKS[col])
                   for col, tok in zip(TABLE_COLUMNS["LINE TYPES"][1:], fields[1:10])}
         if values["EI"] != 0.0:
@@ -92,35 +94,8 @@ def _line_types(rows, notes):
     return types
 
 
-def _points(rows, notes):
-    """Points by ID: dict id -> (row number, kind 'fixed'|'coupled'|'free', position (3,), M, V)."""
-    points = {}
-    for number, fields in rows:
-        key = f"POINTS.{fields[0]}"
-        if not is_integer(fields[0]):
-            raise InputError(f"expected a point number, got '{fields[0]}'", key=_at(number, key))
-        pid = int(fields[0])
-        if pid in points:
-            raise InputError("duplicate point ID", key=_at(number, key))
-        attachment = fields[1].upper()
-        if attachment.startswith(("BODY", "TURBINE")):
-            raise InputError(f"attachment '{fields[1]}': BODIES are not supported yet", key=_at(number, key))
-        kind = ("fixed" if attachment in FIXED else "coupled" if attachment in COUPLED
-                else "free" if attachment in FREE else None)
-        if kind is None:
-            raise InputError(f"unknown attachment '{fields[1]}'; valid: Fixed/Anchor, Coupled/Vessel, "
-                             "Free/Connect", key=_at(number, f"{key}.Attachment"))
-        x, y, z, mass, volume, cda, ca = (_value(tok, number, f"{key}.{col}", _COORDINATE if col in ("X", "Y", "Z")
-                                                 else v.number)
-                                          for col, tok in zip(TABLE_COLUMNS["POINTS"][2:], fields[2:9]))
-        if kind == "free" and (cda or ca) and not (mass or volume):
-            notes.append(f"POINTS.{pid}: CdA and CA of a joint between two lines ignored")
-        points[pid] = (number, kind, np.array([x, y, z]), mass, volume)
-    return points
-
-
 def _lines(rows, types, points):
-    """Raw lines in file order: dicts with id, type, ends (point IDs), length [m], segments, row."""
+    """Raw lines in file order: dicts with id, type, ends (point names), length [m], segments, row."""
     lines, ids = [], set()
     for number, fields in rows:
         key = f"LINES.{fields[0]}"
@@ -131,14 +106,8 @@ def _lines(rows, types, points):
             raise InputError(f"unknown line type '{fields[1]}'{v.suggest(fields[1], types)}; "
                              f"defined in LINE TYPES: {', '.join(types) or 'none'}",
                              key=_at(number, f"{key}.LineType"))
-        ends = []
-        for column, token in zip(("AttachA", "AttachB"), fields[2:4]):
-            if token.upper().startswith("R"):
-                raise InputError(f"attached to rod end '{token}': RODS are not supported yet",
-                                 key=_at(number, f"{key}.{column}"))
-            if not is_integer(token) or int(token) not in points:
-                raise InputError(f"no point '{token}' in POINTS", key=_at(number, f"{key}.{column}"))
-            ends.append(int(token))
+        ends = [line_end(token, points, _at(number, f"{key}.{column}"))
+                for column, token in zip(("AttachA", "AttachB"), fields[2:4])]
         length = _value(fields[4], number, f"{key}.UnstrLen", v.limited(v.positive, "length"))
         segments = v.limited(v.whole, "nodes")(int(fields[5]) if _WHOLE.fullmatch(fields[5]) else fields[5],
                                                _at(number, f"{key}.NumSegs"))
@@ -170,7 +139,28 @@ def _options(rows, notes):
         notes.append(f"OPTIONS ignored by cablefem: {', '.join(ignored)}")
     if "dtm" in values:
         notes.append(f"dtM = {values['dtm']:g} s is MoorDyn's explicit step; the implicit solver keeps its own dt")
+    if values.get("wavekin", 0.0) != 0.0:
+        refuse("WaveKin", _at(numbers["wavekin"], "OPTIONS.WaveKin"), f"WaveKin {raw_option(raw, 'wavekin')}")
     return values, raw, seafloor, numbers
+
+
+def raw_option(raw, lower):
+    """The text of option ``lower`` (case-insensitive name) as written."""
+    return next(text for name, text in raw.items() if name.lower() == lower)
+
+
+def _current_profile(path, options, numbers, notes):
+    """The CurrentProfile of ``Currents 1`` (current_profile.txt beside the file), or None."""
+    mode = options.get("currents", 0.0)
+    if mode == 0.0:
+        return None
+    key = _at(numbers["currents"], "OPTIONS.Currents")
+    if mode != 1.0:
+        refuse("Currents", key, f"Currents {mode:g}")
+    file = v.existing_file(MOORDYN_FILE, f"{key} ({MOORDYN_FILE})", os.path.dirname(path))
+    profile = read_current_profile(file, key)
+    notes.append(f"Currents 1: a steady current profile of {len(profile.z)} heights from {file}")
+    return profile
 
 
 def damping_time(ba, ea, mass, length, segments):
@@ -178,55 +168,6 @@ def damping_time(ba, ea, mass, length, segments):
     if ba >= 0:
         return ba / ea
     return -ba * (length / segments) * math.sqrt(ea * mass) / ea
-
-
-def _chains(lines, points):
-    """Lists of (raw line) joined through free points, each ordered anchor first."""
-    at_point = {}
-    for index, line in enumerate(lines):
-        for end, pid in enumerate(line["ends"]):
-            at_point.setdefault(pid, []).append((index, end))
-    for pid, (number, kind, _, mass, volume) in points.items():
-        count = len(at_point.get(pid, []))
-        if kind != "free" or count == 0:
-            continue
-        if mass or volume:
-            raise InputError(f"free point with mass {mass:g} kg / volume {volume:g} m^3 is not supported yet "
-                             "(only massless joints between two lines)", key=_at(number, f"POINTS.{pid}"))
-        if count != 2:
-            raise InputError(f"free point joining {count} line ends is not supported yet "
-                             "(only joints between exactly two lines)", key=_at(number, f"POINTS.{pid}"))
-    chains, used = [], set()
-    for start in range(len(lines)):
-        if start in used:
-            continue
-        chain, used_here = [start], {start}
-        for forward in (True, False):
-            index, pid = start, lines[start]["ends"][1 if forward else 0]
-            while points[pid][1] == "free":
-                others = [e for e in at_point[pid] if e[0] != index]
-                index, end = others[0] if others else (index, 0)
-                if index in used_here:
-                    raise InputError("lines joined through free points form a loop",
-                                     key=_at(lines[index]["row"], f"LINES.{lines[index]['id']}"))
-                used_here.add(index)
-                chain.insert(len(chain) if forward else 0, index)
-                pid = lines[index]["ends"][1 - end]
-            if forward:
-                last = pid
-            else:
-                first = pid
-        used |= used_here
-        kinds = (points[first][1], points[last][1])
-        if kinds == ("coupled", "fixed"):
-            chain.reverse()
-            first, last = last, first
-        elif kinds != ("fixed", "coupled"):
-            ids = "+".join(lines[i]["id"] for i in chain)
-            raise InputError(f"runs between a {kinds[0]} and a {kinds[1]} point; cablefem needs one Fixed "
-                             "(anchor) and one Coupled (fairlead) end", key=_at(lines[chain[0]]["row"], f"LINES.{ids}"))
-        chains.append(([lines[i] for i in chain], first, last))
-    return chains
 
 
 def read_moordyn(path, simplify=True):
@@ -252,29 +193,19 @@ def _build(path, text, simplify=True):
     found = parse_sections(split_sections(text))
     if not found["LINE TYPES"] and not found["LINES"]:
         raise InputError("no LINE TYPES or LINES section: not a MoorDyn v2 input file")
-    raw_types = _line_types(found["LINE TYPES"], notes)
-    points = _points(found["POINTS"], notes)
+    raw_types = _line_types(found["LINE TYPES"], found["v1"], notes)
+    bodies = read_bodies(found["BODIES"], notes)
+    points = read_points(found["POINTS"], bodies, notes)
     raw_lines = _lines(found["LINES"], raw_types, points)
     options, raw_options, seafloor, options_rows = _options(found["OPTIONS"], notes)
     if found["OUTPUTS"]:
         notes.append(f"OUTPUTS ignored: {' '.join(f for _, fields in found['OUTPUTS'] for f in fields)}")
     get = lambda name: options.get(name, OPTION_DEFAULTS.get(name))  # noqa: E731
-    environment = Environment(water_density=get("wtrdnsty"), gravity=get("g"))
-    built_types, lines, keys = {}, [], {"name": (path, "name (from the file name)")}
-    for chain, first, last in _chains(raw_lines, points):
-        segments = [Segment(_line_type(raw, raw_types, built_types), raw["length"], raw["segments"])
-                    for raw in chain]
-        name = "line" + "+".join(raw["id"] for raw in chain)
-        line = Line(name, points[first][2], points[last][2], segments)
-        key = _at(chain[0]["row"], f"LINES.{'+'.join(r['id'] for r in chain)}")
-        lines.append(v.check_chord(line, key))
-        keys.update(_line_keys(path, len(lines) - 1, key, chain, (first, last), points))
-        if len(chain) > 1:
-            notes.append(f"{name}: MoorDyn lines {', '.join(r['id'] for r in chain)} joined through free "
-                         "points into one line, anchor first")
-    for pid, (number, kind, _, _, _) in points.items():
-        if not any(pid in raw["ends"] for raw in raw_lines):
-            notes.append(f"POINTS.{pid} ({kind}) is attached to no line; ignored")
+    environment = Environment(water_density=get("wtrdnsty"), gravity=get("g"),
+                              current_profile=_current_profile(path, options, options_rows, notes))
+    scene_points = {point.name: point for _, point in points.values()}
+    scene_bodies = {body.name: body for _, body in bodies.values()}
+    lines, keys = _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, notes)
     if seafloor is not None:
         keys["seabed"] = (path, _at(seafloor[1], "OPTIONS.SeafloorFile"))
         file = v.existing_file(seafloor[0], keys["seabed"][1], os.path.dirname(path))
@@ -290,20 +221,55 @@ def _build(path, text, simplify=True):
     solver = Solver(duration=options["tmax"]) if "tmax" in options else Solver()
     if "tmax" in options:
         keys["solver.duration"] = (path, _at(options_rows["tmax"], "OPTIONS.TMax"))
-    notes += [seabed_note, NO_MOTION_NOTE]
+    notes.append(seabed_note)
+    if any(point.kind == "coupled" and point.body is None for point in scene_points.values()):
+        notes.append(NO_MOTION_NOTE)
+    if any(body.kind == "coupled" for body in scene_bodies.values()):
+        notes.append(BODY_NO_MOTION_NOTE)
     return Scene(name=os.path.splitext(os.path.basename(path))[0], lines=lines, seabed=seabed,
                  contact=contact, environment=environment, friction=friction, solver=solver,
-                 source=path, notes=notes, moordyn_options=raw_options, keys=keys)
+                 source=path, notes=notes, moordyn_options=raw_options, keys=keys, points=scene_points,
+                 bodies=scene_bodies)
 
 
-def _line_keys(path, index, key, chain, ends, points):
-    """Where the scene keys of line ``index`` stand in the MoorDyn file: dict scene key -> (path, key)."""
-    keys = {f"lines[{index}]": (path, key), f"lines[{index}].name": (path, key)}
-    for end, pid in zip(("anchor", "fairlead"), ends):
-        keys[f"lines[{index}].{end}"] = (path, _at(points[pid][0], f"POINTS.{pid}"))
-    for j, raw in enumerate(chain):
-        keys[f"lines[{index}].segments[{j}].elements"] = (path, _at(raw["row"], f"LINES.{raw['id']}.NumSegs"))
-    return keys
+def _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, notes):
+    """The strings of the file's lines (``network.strings``), named ``line1+2`` after their MoorDyn
+    lines, and where their scene keys stand in the file: (lines, keys)."""
+    rows = {point.name: (number, pid) for pid, (number, point) in points.items()}
+    for name, (number, pid) in rows.items():
+        if not any(name in raw["ends"] for raw in raw_lines):
+            raise InputError("no line uses this point: remove it, or attach a line to it",
+                             key=_at(number, f"POINTS.{pid}"))
+    built, parts = {}, []
+    for raw in raw_lines:
+        segment = Segment(_line_type(raw, raw_types, built), raw["length"], raw["segments"])
+        a, b = (point_position(scene_points[name], scene_bodies) for name in raw["ends"])
+        parts.append(Line(raw["id"], a, b, [segment], ends=tuple(raw["ends"])))
+
+    def where(key):  # a key of network.strings' errors, as it stands in the file
+        if key.startswith("points."):
+            number, pid = rows[key[len("points."):]]
+            return _at(number, f"POINTS.{pid}")
+        raw = raw_lines[int(re.match(r"lines\[(\d+)\]", key).group(1))]
+        return _at(raw["row"], f"LINES.{raw['id']}")
+
+    by_id = {raw["id"]: raw for raw in raw_lines}
+    lines, keys = [], {"name": (path, "name (from the file name)")}
+    for string in network_strings(parts, scene_points, scene_bodies, where):
+        chain = [by_id[i] for i in string.name.split("+")]
+        key = _at(chain[0]["row"], f"LINES.{string.name}")
+        line = replace(string, name=f"line{string.name}")
+        lines.append(v.check_chord(line, key) if all(line.prescribed) else line)
+        index = len(lines) - 1
+        keys.update({f"lines[{index}]": (path, key), f"lines[{index}].name": (path, key)})
+        for end, name in zip(("anchor", "fairlead"), line.ends):
+            keys[f"lines[{index}].{end}"] = (path, _at(rows[name][0], f"POINTS.{rows[name][1]}"))
+        for j, raw in enumerate(chain):
+            keys[f"lines[{index}].segments[{j}].elements"] = (path, _at(raw["row"], f"LINES.{raw['id']}.NumSegs"))
+        if len(chain) > 1:
+            notes.append(f"{line.name}: MoorDyn lines {', '.join(r['id'] for r in chain)} joined through free "
+                         "points into one line, its most fixed end first")
+    return lines, keys
 
 
 def _line_type(raw, raw_types, built):

@@ -3,11 +3,12 @@
 Headers are lines holding ``---``, matched by keyword as MoorDyn does; up to two
 column-name/unit rows follow a table's header; rows before the first recognised
 header are the title; a line ``END`` ends the file. ``cablefem.io.moordyn_input``
-turns the rows into a Scene.
+turns the rows into a Scene. ``REFUSED`` is the one list of what cablefem does not read, each with
+what to do instead (docs/scene.md has the same table).
 """
 
 from ..errors import InputError
-from ..geometry.readers import is_number
+from ..geometry.readers import is_number, parse_number
 
 #: header keywords (upper case) -> section, tried in this order as MoorDyn does
 SECTION_KEYWORDS = (
@@ -23,17 +24,60 @@ SECTION_KEYWORDS = (
 )
 TABLE_COLUMNS = {
     "LINE TYPES": ("Name", "Diam", "MassDen", "EA", "BA/-zeta", "EI", "Cd", "Ca", "CdAx", "CaAx"),
+    "BODIES": ("ID", "Attachment", "X0", "Y0", "Z0", "r0", "p0", "y0", "Mass", "CG", "I", "Volume", "CdA", "Ca"),
     "POINTS": ("ID", "Attachment", "X", "Y", "Z", "M", "V", "CdA", "CA"),
     "LINES": ("ID", "LineType", "AttachA", "AttachB", "UnstrLen", "NumSegs"),
 }
-#: column names that only MoorDyn v1 tables have (their columns are in another order)
-V1_COLUMNS = {"LINE TYPES": {"CAN", "CAT", "CDN", "CDT"}, "POINTS": {"FX", "FY", "FZ"},
-              "LINES": {"NODEANCH", "NODEFAIR"}}
+#: column names of the MoorDyn v1 LINE TYPES header (LineType Diam MassDenInAir EA BA/-zeta EI Can Cat
+#: Cdn Cdt): MoorDyn-C reads that table by position (``readLineProps``: entries 6-9 are Cdn, Can,
+#: Cdt, Cat whatever the header says), and so does cablefem, with a note
+V1_LINE_TYPE_COLUMNS = {"CAN", "CAT", "CDN", "CDT"}
+#: column names that only the MoorDyn v1 LINES table has: its columns are in another order
+#: (UnstrLen NumSegs NodeAnch NodeFair), which MoorDyn-C v2 does not read either
+V1_LINE_COLUMNS = {"NODEANCH", "NODEFAIR"}
+
+#: What cablefem refuses in a MoorDyn file: construct -> (what it is, what to do instead). The one
+#: list; docs/scene.md ("What stays refused") has the same table.
+REFUSED = {
+    "RODS": ("RODS (rigid rods, and lines attached to rod ends R1A, R1B)",
+             "model a rod as a short stiff line between two points, or fix its line ends to a body (BodyN points)"),
+    "ROD TYPES": ("ROD TYPES (properties of RODS)",
+                  "model a rod as a short stiff line between two points, or fix its line ends to a body"),
+    "FAILURE": ("FAILURE (line breakage during a run)", "run the intact and the broken system as two scenes"),
+    "WaveKin": ("wave kinematics (WaveKin other than 0)",
+                "set WaveKin 0 and prescribe the platform's motion ([motion], or a coupled body's motion in "
+                "a TOML that wraps the file); cablefem has no wave loads on lines"),
+    "Currents": ("a time-varying or gridded current (Currents 2 to 5)",
+                 "give a steady profile: Currents 1 with current_profile.txt, or [environment] current_profile "
+                 "in a TOML that wraps the file"),
+    "nonlinear": ("a nonlinear or viscoelastic EA or BA (a curve file or 'a|b' values)",
+                  "give constant EA and BA (EA: the slope of the curve at the working tension)"),
+    "turbine": ("points on a FAST.Farm turbine (TurbineN, MoorDyn-F)",
+                "attach them to a coupled body (BodyN) of BODIES, or make them Coupled points"),
+    "point force": ("a steady external force on a point (the FX FY FZ columns)",
+                    "leave FX FY FZ at 0 and give the load as the point's mass or volume"),
+    "v1 LINES": ("the MoorDyn v1 LINES columns (NodeAnch NodeFair)",
+                 "write the v2 columns ID LineType AttachA AttachB UnstrLen NumSegs Outputs"),
+}
+
+
+def refuse(construct, key, detail=""):
+    """The InputError of a ``REFUSED`` construct at ``key``: what it is and what to do instead."""
+    what, instead = REFUSED[construct]
+    raise InputError(f"{what}{': ' + detail if detail else ''} is not supported: {instead}", key=key)
 
 
 def at(number, key):
     """The key of a row: 'line <number>: <key>'."""
     return f"line {number}: {key}"
+
+
+def value(token, number, key, check):
+    """A checked number from a file token; the error names the file line and the column."""
+    parsed = parse_number(token)
+    if parsed is None:
+        raise InputError(f"expected a number, got '{token}'", key=at(number, key))
+    return check(parsed, at(number, key))
 
 
 def split_sections(text):
@@ -56,14 +100,17 @@ def split_sections(text):
     return sections
 
 
-def _table_rows(section, rows):
-    """Data rows of a table section: up to two leading column-name/unit rows are dropped."""
+def _table_rows(section, rows, v1):
+    """Data rows of a table section: up to two leading column-name/unit rows are dropped (a v1
+    LINE TYPES header's row number is added to ``v1``)."""
     skipped = 0
     while skipped < min(2, len(rows)) and not any(is_number(f) for f in rows[skipped][1]):
         number, fields = rows[skipped]
-        if V1_COLUMNS[section] & {f.upper() for f in fields}:
-            raise InputError(f"MoorDyn v1 columns ({' '.join(fields)}) are not supported; write the v2 "
-                             f"columns {' '.join(TABLE_COLUMNS[section])}", key=at(number, section))
+        names = {f.upper() for f in fields}
+        if section == "LINES" and V1_LINE_COLUMNS & names:
+            refuse("v1 LINES", at(number, section), f"({' '.join(fields)})")
+        if section == "LINE TYPES" and V1_LINE_TYPE_COLUMNS & names:
+            v1.append(number)
         skipped += 1
     columns = TABLE_COLUMNS[section]
     for number, fields in rows[skipped:]:
@@ -74,21 +121,22 @@ def _table_rows(section, rows):
 
 
 def parse_sections(sections):
-    """Raw tables of a split file: (line types, points, lines, options, outputs)."""
-    found = {"LINE TYPES": [], "POINTS": [], "LINES": [], "OPTIONS": [], "OUTPUTS": []}
+    """Raw tables of a split file by section (LINE TYPES, BODIES, POINTS, LINES: rows of fields;
+    OPTIONS, OUTPUTS: rows) and "v1": the rows of v1 LINE TYPES headers."""
+    found = {"LINE TYPES": [], "BODIES": [], "POINTS": [], "LINES": [], "OPTIONS": [], "OUTPUTS": [], "v1": []}
     recognised = False
     for name, title, number, rows in sections:
         if name is None:
             data = [r for r in rows if sum(is_number(f) for f in r[1]) >= 2]
             if recognised and data:
-                raise InputError("unrecognised section (cablefem reads LINE TYPES, POINTS, LINES, OPTIONS, "
-                                 "OUTPUTS)", key=at(number, title))
+                raise InputError("unrecognised section (cablefem reads LINE TYPES, BODIES, POINTS, LINES, "
+                                 "OPTIONS, OUTPUTS)", key=at(number, title))
             continue
         recognised = True
-        if name in ("LINE TYPES", "POINTS", "LINES"):
-            found[name] += _table_rows(name, rows)
+        if name in TABLE_COLUMNS:
+            found[name] += _table_rows(name, rows, found["v1"])
         elif name in ("OPTIONS", "OUTPUTS"):
             found[name] += rows
         elif any(sum(is_number(f) for f in fields) >= 1 for _, fields in rows):
-            raise InputError("not supported yet", key=at(number, name))
+            refuse(name, at(number, name))
     return found

@@ -3,6 +3,7 @@ line ends that name a point (docs/scene.md, "Networks"; ``cablefem.network``).""
 
 import math
 import re
+from dataclasses import replace
 
 import numpy as np
 
@@ -85,6 +86,26 @@ def read_bodies(raw, folder):
     return bodies
 
 
+def body_motions(raw, bodies, folder):
+    """The bodies of a MoorDyn file (``bodies`` by name: ``body1``, ...) with the motions a TOML that
+    wraps it gives its coupled ones: [bodies.NAME] there holds ``motion`` only."""
+    bodies = dict(bodies)
+    for name, entry in _names(raw, "bodies"):
+        prefix = f"bodies.{name}"
+        if name not in bodies:
+            raise InputError(f"no body '{name}'{v.suggest(name, bodies)} in the MoorDyn file "
+                             f"(its bodies: {', '.join(bodies) or 'none'})", key=prefix)
+        v.check_keys(entry, {"motion": None}, prefix, required=("motion",),
+                     elsewhere={key: "the MoorDyn file gives it; with [moordyn], [bodies.NAME] holds motion "
+                                "only" for key in BODY_KEYS})
+        if bodies[name].kind != "coupled":
+            raise InputError(f"only a coupled body has a motion (this one is {bodies[name].kind})",
+                             key=f"{prefix}.motion")
+        bodies[name] = replace(bodies[name], motion=_body_motion(v.table(entry["motion"], f"{prefix}.motion"),
+                                                                f"{prefix}.motion", folder))
+    return bodies
+
+
 def _six(value, key, quantity="length"):
     """Six finite numbers: three lengths [m] and three angles [deg] in the file."""
     if not isinstance(value, (list, tuple)) or len(value) != 6:
@@ -123,11 +144,7 @@ def read_six_table(path, key):
     text table: seven columns t x y z roll pitch yaw (comma, semicolon or blank separated, a header
     row of names optional, ``#`` comments), or an OpenFAST output (.out) with a ``Time`` column and
     the PtfmSurge ... PtfmYaw channels, found by name."""
-    try:
-        with open(path, encoding="utf-8") as handle:
-            rows = handle.read().splitlines()
-    except (OSError, UnicodeDecodeError) as error:
-        raise InputError(f"cannot read {path}: {v.one_line(error)}", key=key) from None
+    rows = v.read_rows(path, key)
     columns, table, name = None, [], path.rsplit("/", 1)[-1]
     for number, row in enumerate(rows, start=1):
         fields = [f for f in re.split(r"[,;\s]+", row.strip()) if f]

@@ -23,14 +23,14 @@ except ModuleNotFoundError:  # Python 3.10
 import numpy as np
 
 from ..errors import InputError
-from ..loads import catalog
 from ..geometry import Horizontal, Plane, choose_seabed
 from ..geometry.readers import MAX_COORDINATE, parse_number
 from ..line import Line, LineType, Segment
 from ..scene import INTEGRATORS, Contact, Environment, Friction, Motion, Output, Scene, Solver
 from . import validate as v
-from .moordyn_input import NO_MOTION_NOTE, read_moordyn
-from .toml_network import end, read_bodies, read_points
+from .currents import current_profile_setting
+from .moordyn_input import BODY_NO_MOTION_NOTE, NO_MOTION_NOTE, read_moordyn
+from .toml_network import body_motions, end, read_bodies, read_points
 from ..network import point_position, strings as network_strings
 
 TOP_LEVEL_KEYS = ("name", "environment", "line_types", "lines", "seabed", "friction",
@@ -58,11 +58,13 @@ _LENGTH = v.limited(v.positive, "length")
 _ORDER = v.limited(v.whole, "order")
 _ELEMENTS = v.limited(v.whole, "nodes")
 ENVIRONMENT_KEYS = {"water_density": v.limited(v.positive, "water_density"),
-                    "gravity": v.limited(v.positive, "gravity"), "current": v.limited(v.vector3, "speed")}
+                    "gravity": v.limited(v.positive, "gravity"), "current": v.limited(v.vector3, "speed"),
+                    "current_profile": lambda value, key: value}  # a file or a table: _environment
 LINE_TYPE_KEYS = {"diameter": v.limited(v.positive, "diameter"), "mass": v.limited(v.positive, "mass"),
                   "EA": v.limited(v.positive, "EA"), "damping": v.limited(v.non_negative, "damping_time"),
                   "Cd_normal": _COEFFICIENT, "Cd_tangential": _COEFFICIENT, "Ca_normal": _COEFFICIENT,
-                  "Ca_tangential": _COEFFICIENT, "damping_when_slack": v.boolean}
+                  "Ca_tangential": _COEFFICIENT, "damping_when_slack": v.boolean,
+                  "nominal_diameter": v.limited(v.positive, "diameter")}
 LINE_KEYS = {"name": v.text, "anchor": lambda value, key: value, "fairlead": lambda value, key: value,
              "segments": v.tables, "order": _ORDER}  # an end: coordinates or a point's name (toml_network.end)
 SEGMENT_KEYS = {"type": v.text, "length": _LENGTH, "elements": _ELEMENTS}
@@ -103,6 +105,8 @@ def read_toml_scene(path, data=None):
     takes the default of ``cablefem.scene``. ``[line_types]`` and ``[[lines]]``
     may not be combined with ``[moordyn]`` (the lines come from the file).
     """
+    from ..loads import catalog  # here: a load module may read its keys' converters from cablefem.io
+
     path = os.path.abspath(path)
     folder = os.path.dirname(path)
     data = parse_toml(path) if data is None else data
@@ -115,22 +119,22 @@ def read_toml_scene(path, data=None):
         lines = base.lines
         keys.update({key: where for key, where in base.keys.items() if key != "name"})
         kept = [n for n in base.notes if not n.startswith("seabed:") and
-                not (n == NO_MOTION_NOTE and "motion" in data)]
+                not (n == NO_MOTION_NOTE and "motion" in data) and not (n == BODY_NO_MOTION_NOTE and "bodies" in data)]
         notes += kept + [f"lines, line types and options from {base.source}; TOML keys override"]
     else:
         base = None
         v.check_keys(data, TOP_LEVEL_KEYS + tuple(catalog.sections()), "", required=("line_types", "lines", "seabed"))
-    bodies = read_bodies(data["bodies"], folder) if "bodies" in data else {}
-    points = read_points(data["points"], bodies) if "points" in data else {}
-    if base is None:
+    if base is not None:
+        if "points" in data:
+            raise InputError("[points] may not be combined with [moordyn] (the file gives them)", key="points")
+        points, bodies = dict(base.points), body_motions(data.get("bodies", {}), base.bodies, folder)
+    else:
+        bodies = read_bodies(data["bodies"], folder) if "bodies" in data else {}
+        points = read_points(data["points"], bodies) if "points" in data else {}
         lines = _lines(data["lines"], _line_types(data["line_types"]), points, bodies)
-    elif points or bodies:
-        raise InputError("[points] and [bodies] may not be combined with [moordyn] (the file gives them)",
-                         key="points" if points else "bodies")
-    if points or bodies:
-        lines = network_strings(lines, points, bodies)
-    environment = replace(base.environment if base else Environment(),
-                          **_section(data, "environment", ENVIRONMENT_KEYS))
+        if points or bodies:
+            lines = network_strings(lines, points, bodies)
+    environment = _environment(data, base, folder)
     seabed, contact, simplify = _seabed(data.get("seabed", {}), folder, base)
     kind = data.get("seabed", {}).get("kind")
     if kind is not None:  # the TOML's seabed replaces the MoorDyn file's
@@ -142,13 +146,30 @@ def read_toml_scene(path, data=None):
     solver = replace(base.solver if base else Solver(), **_section(data, "solver", SOLVER_KEYS))
     output = replace(Output(), **_section(data, "output", OUTPUT_KEYS))
     notes.append(seabed_note)
-    load_settings = {section: _section(data, section, converters)
-                     for section, converters in catalog.sections().items() if section in data}
+    load_settings = {spec.section: v.pick(v.table(data[spec.section], spec.section), spec.section, spec.keys,
+                                          required=spec.required)
+                     for spec in catalog.CATALOG if spec.section and spec.section in data}
     return Scene(name=name, lines=lines, seabed=seabed, contact=contact, environment=environment,
                  friction=friction, motion=motion, solver=solver, output=output, source=path,
                  notes=notes, moordyn_options=dict(base.moordyn_options) if base else {}, keys=keys,
-                 load_settings=load_settings, points=dict(base.points) if base else points,
-                 bodies=dict(base.bodies) if base else bodies)
+                 load_settings=load_settings, points=points, bodies=bodies)
+
+
+def _environment(data, base, folder):
+    """[environment] over the MoorDyn base's (or the defaults): a uniform ``current`` and a
+    ``current_profile`` (a file in MoorDyn-C's current_profile.txt layout, or a table of heights
+    and velocities, ``io.currents``) exclude each other, and either replaces the base's."""
+    values = _section(data, "environment", ENVIRONMENT_KEYS)
+    if "current" in values and "current_profile" in values:
+        raise InputError("give either current (uniform) or current_profile (varying with depth), not both",
+                         key="environment.current_profile")
+    if "current_profile" in values:
+        key = "environment.current_profile"
+        values["current_profile"] = current_profile_setting(values["current_profile"], key, folder)
+        values["current"] = (0.0, 0.0, 0.0)
+    elif "current" in values:
+        values["current_profile"] = None
+    return replace(base.environment if base else Environment(), **values)
 
 
 def _section(data, name, converters):
@@ -309,11 +330,7 @@ def read_motion_table(path, key):
     or blanks; ``#`` starts a comment line. Times must strictly increase.
     """
     name = os.path.basename(path)
-    try:
-        with open(path, encoding="utf-8") as handle:
-            rows = handle.read().splitlines()
-    except (OSError, UnicodeDecodeError) as error:
-        raise InputError(f"cannot read {path}: {v.one_line(error)}", key=key) from None
+    rows = v.read_rows(path, key)
     table = []
     for number, row in enumerate(rows, start=1):
         fields = [f for f in re.split(r"[,;\s]+", row.strip()) if f]

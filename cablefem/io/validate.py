@@ -38,6 +38,10 @@ LIMITS = {
     "friction": (100.0, "", "friction coefficients are ~0.1 to 1.5"),
     "friction_damping": (1e12, "N s/m", "MoorDyn's FricDamp is ~200 N s/m"),
     "iterations": (10000, "", "Newton converges in tens of iterations or not at all"),
+    "shear_strength": (1e8, "Pa", "soft clays are ~1e3-1e5 Pa, the stiffest ~1e6 Pa"),
+    "strength_gradient": (1e7, "Pa/m", "clays gain ~1e3-1e4 Pa per metre of depth"),
+    "soil_stiffness": (1e6, "1/m", "k_n and k_t are ~1/d_b, 1-100 1/m"),
+    "load_steps": (100000, "", "a pretension path needs tens to hundreds of steps"),
     "order": (20, "", "P1-P3 are the useful orders; scikit-fem's ElementLinePp is well conditioned "
               "far beyond 20"),
     "point_mass": (1e9, "kg", "the heaviest clump weights and floating platforms are ~1e7-1e8 kg"),
@@ -309,6 +313,15 @@ def folder(value, key):
     if len(value.encode("utf-8")) > MAX_PATH_BYTES:
         raise InputError(f"is longer than the {MAX_PATH_BYTES} bytes a path may hold", key=key)
     return value
+
+
+def read_rows(path, key):
+    """The lines of the UTF-8 text file at ``path``; an unreadable file is an InputError at ``key``."""
+    try:
+        with open(path, encoding="utf-8") as handle:
+            return handle.read().splitlines()
+    except (OSError, UnicodeDecodeError) as error:
+        raise InputError(f"cannot read {path}: {one_line(error)}", key=key) from None
 
 
 def one_line(error):

@@ -109,7 +109,7 @@ class LoadSpec:
     build: ``build(setting) -> load or None``, the load a line of a scene gets
     (``cablefem.system.Setting``; None: the scene does not need it); section and keys: the scene
     table the load reads (``[section]`` in TOML) and its keys with their converters
-    (``cablefem.io.validate``), which ``setting.keys`` holds."""
+    (``cablefem.io.validate``), which ``setting.keys`` holds; required: the keys that table must have."""
 
     name: str
     rule: str
@@ -125,3 +125,4 @@ class LoadSpec:
     build: object = None
     section: str | None = None
     keys: dict = field(default_factory=dict)
+    required: tuple = ()

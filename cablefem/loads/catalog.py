@@ -25,9 +25,9 @@ RULES = ("full", "reduced", "node")
 
 
 def _default():
-    from . import added_mass, contact, drag, gravity, points, tension
+    from . import added_mass, contact, drag, gravity, points, soil, tension
 
-    return [tension.SPEC, gravity.SPEC, contact.SPEC, drag.SPEC, added_mass.SPEC, points.SPEC]
+    return [tension.SPEC, gravity.SPEC, contact.SPEC, soil.SPEC, drag.SPEC, added_mass.SPEC, points.SPEC]
 
 
 CATALOG = _default()

@@ -355,9 +355,12 @@ def contact_hold(base, state, hold, p, again):
 
 
 def build(setting):
-    """Every line rests on the seabed: the scene's contact, with friction in dynamics."""
+    """Every line rests on the seabed: the scene's contact, with friction in dynamics; a line of a
+    scene with ``[soil]`` has none (below the surface the soil holds it, ``cablefem.loads.soil``)."""
     from .friction import friction_law
 
+    if "soil" in setting.sections:
+        return None
     props, contact = setting.props, setting.contact
     friction = None if setting.friction is None else friction_law(setting.friction)
     return SeabedContact(setting.seabed, contact.stiffness * props["diameter"], contact_damping(contact, props),

@@ -1,7 +1,9 @@
-"""Morison drag per unit unstretched length, relative to a uniform current
+"""Morison drag per unit unstretched length, relative to the current
 (desire2023 Eq. 3, f_dn + f_dt, times the stretch |r'| = 1 + e of Eq. 1).
 
-With the relative velocity u = U - v, its tangential part u_t = (u . t) t
+The current U is uniform, or a depth profile U(z) evaluated at each quadrature point's height
+(``cablefem.loads.current``, MoorDyn-C's ``Currents = 1``); then the force depends on the position
+too, df/dr = |r'| dh/du dU/dz e_z^T. With the relative velocity u = U - v, its tangential part u_t = (u . t) t
 and normal part u_n = u - u_t, t = r'/|r'|:
 
     f = |r'| 1/2 rho d (Cd_n |u_n| u_n + Cd_t |u_t| u_t).
@@ -36,6 +38,7 @@ from numba import njit
 from ..errors import InputError
 from . import LoadSpec, Terms, compose, identity_like, outer, unit_tangent
 from ._small import dot
+from .current import PROFILE_FIELDS, current_at, no_profile
 
 
 def tangential_drag_from_moordyn(cd_axial):
@@ -53,11 +56,12 @@ def quadratic(w):
 
 class Drag:
     """Morison drag: diameter d [m], Cd_normal, Cd_tangential [-] per element (nel,),
-    water density rho [kg/m^3] and uniform current U [m/s] (3,)."""
+    water density rho [kg/m^3] and uniform current U [m/s] (3,), or a ``CurrentProfile``
+    (``profile``, which then replaces ``current``)."""
 
     name = "drag"
 
-    def __init__(self, diameter, Cd_normal, Cd_tangential, water_density, current=(0.0, 0.0, 0.0)):
+    def __init__(self, diameter, Cd_normal, Cd_tangential, water_density, current=(0.0, 0.0, 0.0), profile=None):
         current = np.asarray(current, dtype=float)
         if current.shape != (3,) or not np.all(np.isfinite(current)):
             raise InputError(f"expected 3 finite numbers, got {current.tolist()}", key="current")
@@ -65,13 +69,18 @@ class Drag:
         self.normal = (half_rho_d * np.asarray(Cd_normal, dtype=float))[:, None]  # [kg/m^2]
         self.tangential = (half_rho_d * np.asarray(Cd_tangential, dtype=float))[:, None]
         self.current = current.reshape(3, 1, 1)
+        self.profile = profile
 
     def evaluate(self, state, jacobian=True):
         if state.v is None:
             return Terms()
         dr = state.dr
         t, stretch, _ = unit_tangent(dr)
-        u = self.current - state.v
+        if self.profile is None:
+            u = self.current - state.v
+        else:
+            U, slope = self.profile.at(state.r[2])
+            u = U - state.v
         along = np.einsum("ceq,ceq->eq", u, t)
         u_normal = u - along * t
         g_normal, dg_normal = quadratic(u_normal)
@@ -93,14 +102,17 @@ class Drag:
             + self.tangential * np.abs(along) * (2.0 * t_u + along * eye)
         # f = |r'| h(u, t(r')): d|r'|/dr' = t^T, dt/dr' = (I - t t^T)/|r'|
         terms.force_dr = outer(per_stretched, t) + compose(dh_dt, normal_projector)
+        if self.profile is not None:  # U(z): df/dr = |r'| dh/du dU/dz e_z^T
+            terms.force_r = np.zeros_like(dh_du)
+            terms.force_r[:, 2] = stretch * np.einsum("ab...,b...->a...", dh_du, slope)
         return terms
-
 
     def params(self):
         """The compiled face's parameters per element (``SPEC.params``), each (nel,) or (nel, 3)."""
         nel = self.normal.shape[0]
+        profile = no_profile(nel) if self.profile is None else self.profile.params(nel)
         return {"normal": self.normal[:, 0], "tangential": self.tangential[:, 0],
-                "current": np.tile(self.current.ravel(), (nel, 1))}
+                "current": np.tile(self.current.ravel(), (nel, 1)), **profile}
 
 
 @njit(cache=True, _nrt=False)
@@ -113,8 +125,12 @@ def drag_point(ctx, p, old, new, state, hold, out, M, u):
         return
     v, t, P, stretch, v_x = ctx.v, ctx.t, ctx.P, ctx.stretch, ctx.v_x
     f, Ab, Bb = out.f, out.A, out.B
-    w, un, per = u[0], u[1], u[2]
-    current = d.current
+    w, un, per, current, slope = u[0], u[1], u[2], u[3], u[4]
+    if d.profile_n == 0:
+        for i in range(3):
+            current[i] = d.current[i]
+    else:
+        current_at(ctx.r[2], d.profile_n, d.profile_z, d.profile_u, current, slope)
     w[0], w[1], w[2] = current[0] - v[0], current[1] - v[1], current[2] - v[2]  # u
     along = dot(w, t)
     for i in range(3):
@@ -137,6 +153,8 @@ def drag_point(ctx, p, old, new, state, hold, out, M, u):
             Ab[i, j] += v_x * stretch * (dgP + 2.0 * axial * t[i] * t[j])
             Bb[i, j] += normal * speed * t[i] * un[j] + along * dgP \
                 - axial * (2.0 * t[i] * un[j] + along * P[i, j]) - per[i] * t[j]
+            if d.profile_n != 0:  # A -= f_r: f_r[:, 2] = |r'| dh/du dU/dz
+                Ab[i, 2] -= stretch * (dgP + 2.0 * axial * t[i] * t[j]) * slope[j]
 
 
 def build(setting):
@@ -144,8 +162,9 @@ def build(setting):
     props, env = setting.props, setting.environment
     if not setting.dynamic or not (np.any(props["Cd_normal"] > 0) or np.any(props["Cd_tangential"] > 0)):
         return None
-    return Drag(props["diameter"], props["Cd_normal"], props["Cd_tangential"], env.water_density, env.current)
+    return Drag(props["diameter"], props["Cd_normal"], props["Cd_tangential"], env.water_density, env.current,
+                profile=env.current_profile)
 
 
-SPEC = LoadSpec("drag", "full", (("normal", "f8"), ("tangential", "f8"), ("current", "f8", (3,))), drag_point, Drag,
-                scratch=(0, 3), build=build)
+SPEC = LoadSpec("drag", "full", (("normal", "f8"), ("tangential", "f8"), ("current", "f8", (3,))) + PROFILE_FIELDS,
+                drag_point, Drag, scratch=(0, 5), build=build)

@@ -26,6 +26,7 @@ import numpy as np
 from numba import njit
 
 from . import LoadSpec, Terms
+from .current import PROFILE_FIELDS, current_at, no_profile
 
 
 def sphere_fraction(z, radius):
@@ -51,12 +52,13 @@ def sphere_integral(z, radius):
 
 class PointLoads:
     """The joints of one line: vertex index (k,) and per joint its dry weight m g [N], buoyancy
-    rho g V [N], sphere radius [m], drag factor rho CdA / 2 [kg/m] and inertia m + Ca rho V [kg]."""
+    rho g V [N], sphere radius [m], drag factor rho CdA / 2 [kg/m] and inertia m + Ca rho V [kg];
+    the current is uniform (3,) [m/s] or a ``CurrentProfile`` (``profile``) at each point's height."""
 
     name = "points"
     rule = "node"
 
-    def __init__(self, vertices, joints, water_density, gravity, current=(0.0, 0.0, 0.0)):
+    def __init__(self, vertices, joints, water_density, gravity, current=(0.0, 0.0, 0.0), profile=None):
         self.vertices = np.asarray(vertices, dtype=np.int64)
         self.names = [joint.name for joint in joints]
         mass = np.array([joint.mass for joint in joints], dtype=float)
@@ -67,6 +69,7 @@ class PointLoads:
         self.drag = 0.5 * water_density * np.array([joint.CdA for joint in joints], dtype=float)
         self.inertia = mass + water_density * volume * np.array([joint.Ca for joint in joints], dtype=float)
         self.current = np.asarray(current, dtype=float)
+        self.profile = profile
 
     def evaluate(self, state, jacobian=True):
         """Forces (3, k) at the points of ``state`` (positions, velocities and accelerations (3, k))."""
@@ -80,12 +83,19 @@ class PointLoads:
             terms.force_r = np.zeros((3, 3, k))
             terms.force_r[2, 2] = self.buoyancy * slope
         if state.v is not None and np.any(self.drag):
-            u = self.current[:, None] - state.v
+            if self.profile is None:
+                u = self.current[:, None] - state.v
+            else:
+                U, slope = self.profile.at(z)
+                u = U - state.v
             speed = np.sqrt(np.einsum("ck,ck->k", u, u))
             force += self.drag * speed * u
             if jacobian:
                 unit = np.divide(u, speed, out=np.zeros_like(u), where=speed > 0.0)
-                terms.force_v = -self.drag * (speed * np.eye(3)[:, :, None] + speed * unit[:, None] * unit[None, :])
+                df_du = self.drag * (speed * np.eye(3)[:, :, None] + speed * unit[:, None] * unit[None, :])
+                terms.force_v = -df_du
+                if self.profile is not None:  # u = U(z) - v: df/dz = df/du dU/dz
+                    terms.force_r[:, 2] += np.einsum("abk,bk->ak", df_du, slope)
         if state.a is not None and np.any(self.inertia):
             force -= self.inertia * state.a
             if jacobian:
@@ -98,8 +108,10 @@ class PointLoads:
 
     def params(self):
         """The compiled face's parameters per point (``SPEC.params``), each (k,)."""
+        k = len(self.dry)
+        profile = no_profile(k) if self.profile is None else self.profile.params(k)
         return {"dry": self.dry, "buoyancy": self.buoyancy, "radius": self.radius, "drag": self.drag,
-                "inertia": self.inertia, "current": np.broadcast_to(self.current, (len(self.dry), 3))}
+                "inertia": self.inertia, "current": np.broadcast_to(self.current, (k, 3)), **profile}
 
 
 @njit(cache=True, _nrt=False)
@@ -119,7 +131,13 @@ def point_point(ctx, p, old, new, state, hold, out, M, u):
     if ctx.jac:
         out.A[2, 2] += -q.buoyancy * slope
     if q.drag != 0.0:
-        u0, u1, u2 = q.current[0] - ctx.v[0], q.current[1] - ctx.v[1], q.current[2] - ctx.v[2]
+        current, slope = u[0], u[1]
+        if q.profile_n == 0:
+            for a in range(3):
+                current[a] = q.current[a]
+        else:
+            current_at(ctx.r[2], q.profile_n, q.profile_z, q.profile_u, current, slope)
+        u0, u1, u2 = current[0] - ctx.v[0], current[1] - ctx.v[1], current[2] - ctx.v[2]
         speed = np.sqrt(u0 * u0 + u1 * u1 + u2 * u2)
         c = q.drag * speed
         out.f[0] += c * u0
@@ -134,6 +152,10 @@ def point_point(ctx, p, old, new, state, hold, out, M, u):
                 out.A[a, a] += w * speed
                 for b in range(3):
                     out.A[a, b] += w * uu[a] * uu[b] * inv
+            if q.profile_n != 0:  # A -= f_r: f_r[:, 2] = drag (speed I + u u^T / speed) dU/dz
+                for a in range(3):
+                    out.A[a, 2] -= q.drag * (speed * slope[a] + uu[a] * inv * (uu[0] * slope[0] + uu[1] * slope[1]
+                                                                                 + uu[2] * slope[2]))
     if q.inertia != 0.0:
         for a in range(3):
             out.f[a] -= q.inertia * ctx.a[a]
@@ -153,9 +175,9 @@ def build(setting):
         return None
     env = setting.environment
     return PointLoads(vertices[keep], [line.joints[i][1] for i in keep], env.water_density, env.gravity,
-                      env.current)
+                      env.current, profile=env.current_profile)
 
 
 SPEC = LoadSpec("points", "node", (("dry", "f8"), ("buoyancy", "f8"), ("radius", "f8"), ("drag", "f8"),
-                                   ("inertia", "f8"), ("current", "f8", (3,))), point_point, PointLoads,
-                build=build)
+                                   ("inertia", "f8"), ("current", "f8", (3,))) + PROFILE_FIELDS, point_point,
+                PointLoads, scratch=(0, 2), build=build)

@@ -10,6 +10,8 @@ coupled points and return the time series of the forces on them.
     result["end_mass"]     # (n, k, 3, 3) [kg], mass matrix of the line end nodes at each point
     result["initial_state"]  # bytes (moordyn.Serialize) of the state after the initial-condition solve;
                              # run_moordyn(..., initial_state=...) starts another run from it
+    result["probes"]       # (n, ...) with probe=f: f(moordyn, system) at every coupling time, e.g. the
+                           # position of a free point or the force of a line's anchor node
 
 The force MoorDyn-C returns for a coupled point is the net force on the end nodes of its lines
 (tension of the end segments, half-segment weight, drag, seabed), *without* their inertia: the
@@ -185,11 +187,12 @@ def _token(value):
 
 
 def run_moordyn(path, motion, duration, dt_out, dtM=None, segments=None, options=None,
-                coupling="secant", ic_dtM=None, line_nodes=False, initial_state=None):
+                coupling="secant", ic_dtM=None, line_nodes=False, initial_state=None, probe=None):
     """Run MoorDyn on ``path`` for ``duration`` [s], coupling every ``dt_out`` [s], the coupled
     points following ``motion(t) -> (positions (k, 3), velocities (k, 3))``; returns a dict with
     t (n,), forces (n, k, 3) [N], tensions (n, k) [N], positions (n, k, 3) [m] of the points as
-    MoorDyn reports them, end_mass (n, k, 3, 3) [kg], wall_time_s,
+    MoorDyn reports them, end_mass (n, k, 3, 3) [kg], probes (n, ...) (``probe(moordyn, system)``
+    returns an array at every coupling time; None without a probe), wall_time_s,
     init_time_s, dtM [s] and segments (dict line ID -> NumSegs) as run, and, with
     ``line_nodes``, the final node positions of every line (list of (N+1, 3) arrays).
 
@@ -252,6 +255,7 @@ def run_moordyn(path, motion, duration, dt_out, dtM=None, segments=None, options
                                 np.zeros((3, 3))) for handles in attached]
 
                 forces[0] = [moordyn.GetPointForce(p) for p in points]
+                probes = None if probe is None else [np.asarray(probe(moordyn, system), dtype=float)]
                 end_mass[0] = masses()
                 positions[0] = x
                 for n in range(steps):
@@ -260,6 +264,8 @@ def run_moordyn(path, motion, duration, dt_out, dtM=None, segments=None, options
                     forces[n + 1] = np.reshape(moordyn.Step(system, x.ravel(), rate.ravel(), t[n], dt_out), (k, 3))
                     end_mass[n + 1] = masses()
                     positions[n + 1] = [moordyn.GetPointPos(p) for p in points]  # where MoorDyn put them
+                    if probe is not None:
+                        probes.append(np.asarray(probe(moordyn, system), dtype=float))
                     x, v = x_next, v_next
                 finished = time.perf_counter()
                 if line_nodes:
@@ -271,7 +277,8 @@ def run_moordyn(path, motion, duration, dt_out, dtM=None, segments=None, options
             finally:
                 moordyn.Close(system)
     result = {"t": t, "forces": forces, "tensions": np.linalg.norm(forces, axis=2), "positions": positions,
-              "end_mass": end_mass, "wall_time_s": finished - start, "init_time_s": initialised - start,
+              "end_mass": end_mass, "probes": None if probe is None else np.array(probes),
+              "wall_time_s": finished - start, "init_time_s": initialised - start,
               "dtM": dtM, "ic_dtM": ic_dtM, "initial_state": state,
               "segments": line_segments(text)}
     if line_nodes:

@@ -35,6 +35,7 @@ from cablefem.geometry.generators import slope  # noqa: E402
 from cablefem.geometry.readers import moordyn_c  # noqa: E402
 from cablefem.line import Line, Segment  # noqa: E402
 from cablefem.loads.added_mass import AddedMass  # noqa: E402
+from cablefem.loads.contact import SeabedContact  # noqa: E402
 from cablefem.loads.drag import Drag  # noqa: E402
 from cablefem.motion import fairlead_motion  # noqa: E402
 from cablefem.run import boundary_path, build_system, start_states  # noqa: E402
@@ -43,7 +44,7 @@ from cablefem.statics import solve_static  # noqa: E402
 from cablefem.scenes import FLUME_ANCHOR, FLUME_DEPTH, FLUME_MOTIONS, table5_chain  # noqa: E402
 
 from validation.moordyn import peer  # noqa: E402
-from validation.moordyn.switches import PerUnstretchedLength, VerticalSeabed  # noqa: E402
+from validation.moordyn.switches import PerUnstretchedLength, TwoSidedDamping, VerticalSeabed  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 MN = 1e6
@@ -312,10 +313,10 @@ def moordyn_motion(scene, points):
     return motion
 
 
-def run_moordyn_case(path, scene, duration, settings, options=None, initial_state=None):
-    """MoorDyn on ``path`` with the scene's motion: dict of t (n,), forces (n, k, 3) [N] (the peer's,
-    end-node inertia not subtracted), forces_on_point (n, k, 3) (end-node inertia subtracted),
-    wall times [s], and the coupled points' positions (k, 3)."""
+def run_moordyn_case(path, scene, duration, settings, options=None, initial_state=None, coupling_dt=COUPLING_DT):
+    """MoorDyn on ``path`` with the scene's motion, coupled every ``coupling_dt`` [s]: dict of t (n,),
+    forces (n, k, 3) [N] (the peer's, end-node inertia not subtracted), forces_on_point (n, k, 3)
+    (end-node inertia subtracted), wall times [s], and the coupled points' positions (k, 3)."""
     text = Path(path).read_text()
     counts = peer.line_segments(text)
     segments = {line_id: n * settings["segments"] for line_id, n in counts.items()}
@@ -325,7 +326,7 @@ def run_moordyn_case(path, scene, duration, settings, options=None, initial_stat
         # a node stands for UnstrLen / NumSegs: keep the friction ramp's saturation velocity
         options["FricDamp"] = float(fric_damp) / settings["segments"]
     _, points = peer.coupled_points(path)
-    result = peer.run_moordyn(path, moordyn_motion(scene, points), duration, COUPLING_DT,
+    result = peer.run_moordyn(path, moordyn_motion(scene, points), duration, coupling_dt,
                               dtM=settings["dtM"], segments=segments, options=options,
                               ic_dtM=settings["ic_dtM"], initial_state=initial_state)
     acceleration = np.array([fairlead_motion(scene.motion, t)[2] for t in result["t"]])
@@ -342,19 +343,21 @@ def refined(scene, factor):
     return replace(scene, lines=lines)
 
 
-def run_cablefem_case(scene, duration, dt, hydro_per_unstretched=False, lumped=False, retries=2):
+def run_cablefem_case(scene, duration, dt, hydro_per_unstretched=False, lumped=False, retries=2,
+                      two_sided_damping=False):
     """cablefem's BDF2 on ``scene`` (statics at t = 0, then steps of dt [s]): dict of t (n,),
     forces (n, lines, 3) [N] on the fairleads, wall_time_s, init_time_s, newton_iterations, dt
     as run, ``failures`` (messages) and ``start`` (how the statics converged). A run whose Newton
     fails even after the integrator's own step halving is rerun from the start with dt / 2, up to
-    ``retries`` times, and says so (README, "Problems found")."""
+    ``retries`` times, and says so (README, "Problems found"). ``two_sided_damping``: MoorDyn-C's
+    seabed damping, acting also on a penetrating point that moves out (``switches``)."""
     start = time.perf_counter()
     states, how = static_start(scene)
     initialised = time.perf_counter()
     failures = []
     while True:
         try:
-            result = _cablefem_steps(scene, states, duration, dt, hydro_per_unstretched, lumped)
+            result = _cablefem_steps(scene, states, duration, dt, hydro_per_unstretched, lumped, two_sided_damping)
         except ConvergenceError as error:
             if len(failures) >= retries:
                 raise
@@ -394,7 +397,7 @@ def static_start(scene):
     return states, "; ".join(how)
 
 
-def _cablefem_steps(scene, states, duration, dt, hydro_per_unstretched, lumped):
+def _cablefem_steps(scene, states, duration, dt, hydro_per_unstretched, lumped, two_sided_damping=False):
     """Step every line from ``states`` by dt [s] up to ``duration`` [s]; the run's dict."""
     integrators = []
     for line, X0 in zip(scene.lines, states):
@@ -402,10 +405,14 @@ def _cablefem_steps(scene, states, duration, dt, hydro_per_unstretched, lumped):
         if hydro_per_unstretched:
             system.loads = [PerUnstretchedLength(load) if isinstance(load, (Drag, AddedMass)) else load
                             for load in system.loads]
+        if two_sided_damping:
+            system.loads = [TwoSidedDamping(load) if isinstance(load, SeabedContact) else load
+                            for load in system.loads]
         integrators.append(INTEGRATORS[scene.solver.integrator](
             system, X0, boundary_path(scene, line), dt=dt, tolerance=scene.solver.tolerance,
             newton="full", lumped=lumped,  # one Newton for the compiled and the numpy path
-            compiled=not hydro_per_unstretched))  # wrapped loads have no compiled face: the numpy path
+            # wrapped loads have no compiled face: the numpy path
+            compiled=not (hydro_per_unstretched or two_sided_damping)))
     steps = int(round(duration / dt))
     t = np.arange(steps + 1) * dt
     forces = np.empty((steps + 1, len(integrators), 3))

@@ -1,0 +1,59 @@
+"""cablefem and MoorDyn-C with aligned physics on the frictionless flume chain (``validation/moordyn_aligned``,
+fast variant: the ramp and one period; ~10 s).
+
+Tolerances, from the full study (validation/moordyn_aligned/README.md) plus what the coarse settings add:
+
+- slow surge: the finest runs agree to 0.02 % RMS and 0.01 % in the mean. At the fast settings
+  MoorDyn's 80 segments are 0.23 % RMS and +0.64 % in the peak from its 640-segment run, cablefem's
+  P2 x 40 (dt 0.01 s) 0.11 % and -0.03 %: RMS 0.4 %, peak 1 % (measured 0.27 %, -0.67 %). The mean
+  is what the weight, buoyancy, EA and the seabed decide, and it agrees at any resolution: 0.02 %
+  (measured 0.00 %).
+- snap, MoorDyn's coupling step: moving the fairlead along the secant of the motion every 0.01 s
+  instead of every 0.001 s changes MoorDyn's snap tension by 0.46 % RMS at 40 segments (0.95 % at
+  320): the switch must remove a difference that is there, > 0.2 %.
+- ``TwoSidedDamping``: MoorDyn-C's seabed damping acts on a penetrating point moving out too.
+"""
+
+import numpy as np
+import pytest
+
+pytest.importorskip("moordyn")
+
+from cablefem.geometry import Plane  # noqa: E402
+from cablefem.loads import State  # noqa: E402
+from cablefem.loads.contact import SeabedContact  # noqa: E402
+
+from validation.moordyn.switches import TwoSidedDamping  # noqa: E402
+from validation.moordyn_aligned import run as study  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def results():
+    return study.run(fast=True, log=lambda *args: None)
+
+
+def test_frictionless_slow_surge_agrees_with_moordyn_at_coarse_settings(results):
+    d = results["slow"]["finest"]["cablefem_vs_moordyn"]
+    assert d["rms"] < 4e-3
+    assert abs(d["mean"]) < 2e-4
+    assert abs(d["peak"]) < 1e-2
+
+
+def test_moordyn_coupling_step_changes_its_snap_tension(results):
+    assert results["snap"]["switches"]["coupling"]["difference"]["rms"] > 2e-3
+
+
+def test_two_sided_damping_pulls_a_penetrating_point_moving_out_and_leaves_a_closing_one():
+    seabed = Plane((0.0, 0.0, -100.0), (0.0, 0.0, 1.0))
+    contact = SeabedContact(seabed, [1e5], [2e4])
+    wrapped = TwoSidedDamping(contact)
+    r = np.array([0.0, 0.0, -100.01]).reshape(3, 1, 1)
+    dr = np.array([1.0, 0.0, 0.0]).reshape(3, 1, 1)
+    for vz, extra in ((-0.1, 0.0), (0.1, -2e4 * 0.1)):
+        state = State(r=r, dr=dr, v=np.array([0.0, 0.0, vz]).reshape(3, 1, 1))
+        plain, both = contact.evaluate(state), wrapped.evaluate(state)
+        assert both.force[2, 0, 0] - plain.force[2, 0, 0] == pytest.approx(extra, rel=1e-12, abs=1e-12)
+        h = 1e-7
+        moved = State(r=r, dr=dr, v=np.array([0.0, 0.0, vz + h]).reshape(3, 1, 1))
+        slope = (wrapped.evaluate(moved, jacobian=False).force[2, 0, 0] - both.force[2, 0, 0]) / h
+        assert both.force_v[2, 2, 0, 0] == pytest.approx(slope, rel=1e-6)

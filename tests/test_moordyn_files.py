@@ -1,0 +1,250 @@
+"""MoorDyn's own input files (tests/data/moordyn, copied from MoorDyn's repository) read as a MoorDyn
+user would: each into the network it describes (points, bodies, strings and their kinds); the ones
+whose strings end at fixed, coupled and body points solve in statics, and a free body too; the ones
+with junctions or free bodies read, and a run refuses them only where its steps are missing
+(``network.check_no_coupling``). Also: MoorDyn-C's v1 LINE TYPES layout read by position, the
+Currents option and [environment] current_profile, body motions given by a TOML that wraps a file."""
+
+import json
+import os
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from cablefem.cli import main
+from cablefem.errors import InputError
+from cablefem.io import load_scene
+from cablefem.network import check_no_coupling, coupling
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "moordyn")
+
+
+def data(name):
+    return os.path.join(DATA, name)
+
+
+def kinds(scene):
+    """Point kinds ('body1' for a point on body1) and body kinds by name."""
+    return ({name: point.body or point.kind for name, point in scene.points.items()},
+            {name: body.kind for name, body in scene.bodies.items()})
+
+
+def static_json(path, tmp_path, capsys):
+    """``cablefem static FILE --json``: its JSON (exit status 0 asserted)."""
+    out = tmp_path / "static.json"
+    assert main(["static", str(path), "--json", str(out)]) == 0, capsys.readouterr()
+    capsys.readouterr()
+    return json.loads(out.read_text())
+
+
+def test_three_catenaries_from_fixed_anchors_to_vessel_fairleads(tmp_path, capsys):
+    """lines.txt (OC3-Hywind): three strings anchor first; the statics give three equal fairlead
+    tensions (the layout is symmetric at 120 deg to 1e-2 m, so to 1e-4 relative)."""
+    scene = load_scene(data("lines.txt"))
+    assert [line.name for line in scene.lines] == ["line1", "line2", "line3"]
+    assert kinds(scene) == ({"point1": "fixed", "point2": "fixed", "point3": "fixed", "point4": "coupled",
+                             "point5": "coupled", "point6": "coupled"}, {})
+    assert [line.ends for line in scene.lines] == [("point1", "point4"), ("point2", "point5"), ("point3", "point6")]
+    lines = static_json(data("lines.txt"), tmp_path, capsys)["lines"]
+    tensions = [entry["fairlead_tension"] for entry in lines]
+    np.testing.assert_allclose(tensions, tensions[0], rtol=1e-4)
+    assert 5e5 < tensions[0] < 2e6  # OC3-Hywind's pretension is ~0.9 MN
+
+
+def test_fairleads_on_a_coupled_body_solve_where_the_body_holds_them(tmp_path, capsys):
+    """lines_body.txt: the fairleads are points of a coupled body at (0, 0, -35): each string's
+    fairlead end is the body's point r + R p, and the statics solve."""
+    scene = load_scene(data("lines_body.txt"))
+    assert kinds(scene) == ({"point1": "fixed", "point2": "fixed", "point3": "fixed", "point4": "body1",
+                             "point5": "body1", "point6": "body1"}, {"body1": "coupled"})
+    np.testing.assert_allclose(scene.lines[0].fairlead, [5.2, 0.0, -105.0])
+    assert coupling(scene.lines, scene.points, scene.bodies) == ([], [])
+    lines = static_json(data("lines_body.txt"), tmp_path, capsys)["lines"]
+    np.testing.assert_allclose([entry["nodes"][-1] for entry in lines],
+                               [[5.2, 0.0, -105.0], [-2.6, 4.5, -105.0], [-2.6, -4.5, -105.0]], atol=1e-9)
+
+
+def test_a_mass_on_a_free_end_hangs_below_its_fixed_point(tmp_path, capsys):
+    """pendulum.txt: a line as dense as the water, a free point of 1e5 kg on its free end: it hangs
+    straight down, the top carrying the point's weight (MoorDyn's default g = 9.80665)."""
+    scene = load_scene(data("pendulum.txt"))
+    assert kinds(scene) == ({"point1": "fixed", "point2": "free"}, {})
+    (line,) = scene.lines
+    assert line.prescribed == (True, False) and line.joints[0][1].mass == 1e5
+    (entry,) = static_json(data("pendulum.txt"), tmp_path, capsys)["lines"]
+    weight = 1e5 * 9.80665
+    np.testing.assert_allclose(entry["anchor_tension"], weight, rtol=1e-6)  # the top (fixed) end
+    np.testing.assert_allclose(entry["nodes"][-1][:2], [0.0, 0.0], atol=1e-6)
+
+
+def test_a_riser_between_two_fixed_points_in_a_current_profile(tmp_path, capsys):
+    """viv/viv.txt: a line between two Fixed points (no fairlead at all), Currents 1 with its
+    current_profile.txt (0.2 m/s from -11 m to the surface, 50 rows on one straight line, kept as 2),
+    the v2 header with an 11th column (Cl) noted; the statics solve."""
+    scene = load_scene(data("viv/viv.txt"))
+    assert kinds(scene) == ({"point1": "fixed", "point2": "fixed"}, {})
+    profile = scene.environment.current_profile
+    assert profile.z == (-11.0, 0.0) and profile.velocity == ((0.2, 0.0, 0.0), (0.2, 0.0, 0.0))
+    assert any("columns after CaAx ignored" in note for note in scene.notes)
+    (entry,) = static_json(data("viv/viv.txt"), tmp_path, capsys)["lines"]
+    np.testing.assert_allclose([entry["nodes"][0], entry["nodes"][-1]], [[-21.0425, 0, -10], [0, 0, -1]], atol=1e-9)
+
+
+def test_lines_meeting_at_free_points_read_into_strings_and_a_junction():
+    """tripod.txt: eleven lines, free points joining two line ends become joints of four strings
+    (nodeTether + nodeFloat up to a free end, three anchor legs of three lines each), and point 3,
+    where four string ends meet, is a junction: a run takes it with BDF2 at fixed steps only
+    (check_no_coupling refuses generalised-alpha, one line)."""
+    scene = load_scene(data("tripod.txt"))
+    assert sorted(line.name for line in scene.lines) == ["line11+10+9", "line2+1", "line5+4+3", "line8+7+6"]
+    points, bodies = kinds(scene)
+    assert [name for name, kind in points.items() if kind == "fixed"] == ["point6", "point9", "point12"]
+    assert coupling(scene.lines, scene.points, scene.bodies) == (["point3"], [])
+    legs = [line for line in scene.lines if line.name != "line2+1"]
+    assert all(line.ends[1] == "point3" and line.prescribed == (True, False) for line in legs)
+    check_no_coupling(scene)  # BDF2 at fixed steps, the default: runs
+    scene.solver = replace(scene.solver, integrator="generalized-alpha")
+    with pytest.raises(InputError, match="point 'point3' joins three or more lines"):
+        check_no_coupling(scene)
+
+
+def test_a_free_body_reads_solves_in_statics_and_is_refused_only_in_a_run(tmp_path, capsys):
+    """lines_body.txt with its body made free (mass, inertia, volume): read with MoorDyn's CG (one
+    number: its z) and inertia (one number: all three); `cablefem static` finds where the hanging
+    chain's pull balances its net buoyancy (rho V - M) g (1e-6); a run refuses it (check_no_coupling)."""
+    text = open(data("lines_body.txt"), encoding="utf-8").read()
+    row = "1    Coupled     0.0    0.0   -35   0       0      0      0     -35      0        0       0      0"
+    path = tmp_path / "free_body.txt"
+    path.write_text(text.replace(row, "1    Free   0.0  0.0  -35  0  0  30  2e6  -5  1e8  2000  0  0"))
+    scene = load_scene(path)
+    body = scene.bodies["body1"]
+    assert body.kind == "free" and body.mass == 2e6 and body.volume == 2000.0
+    np.testing.assert_allclose(body.cg, [0, 0, -5])
+    np.testing.assert_allclose(body.inertia, [1e8, 1e8, 1e8])
+    np.testing.assert_allclose(body.rotation, [0, 0, np.radians(30)])
+    assert coupling(scene.lines, scene.points, scene.bodies)[1] == ["body1"]
+    with pytest.raises(InputError, match="body 'body1' \\(free\\).*not solved yet"):
+        check_no_coupling(scene)
+    solved = static_json(path, tmp_path, capsys)["bodies"]["body1"]
+    net_buoyancy = (1025.0 * 2000.0 - 2e6) * 9.80665
+    np.testing.assert_allclose(solved["force"], [0.0, 0.0, -net_buoyancy], rtol=0, atol=1e-6 * net_buoyancy)
+
+
+def test_rods_and_v1_line_types_of_a_moordyn_file_refused_with_what_to_do():
+    """complex_system.txt has RODS: refused with what to do instead (REFUSED's one list)."""
+    with pytest.raises(InputError, match="ROD TYPES .* is not supported: model a rod as a short stiff line"):
+        load_scene(data("complex_system.txt"))
+
+
+def test_v1_line_types_are_read_by_position_as_moordyn_c_reads_them(tmp_path):
+    """The v1 header LineType Diam MassDenInAir EA BA/-zeta EI Can Cat Cdn Cdt: MoorDyn-C's
+    readLineProps reads entries 6-9 as Cdn, Can, Cdt, Cat whatever the header names, and so does
+    cablefem, with a note: the value under 'Can' is the normal drag coefficient."""
+    text = open(data("lines.txt"), encoding="utf-8").read()
+    text = text.replace("TypeName   Diam    Mass/m     EA         BA/-zeta    EI         Cd     Ca     CdAx    CaAx",
+                        "LineType   Diam    MassDenInAir EA       BA/-zeta    EI         Can    Cat    Cdn     Cdt")
+    text = text.replace("0          1.6    1.0    0.1     0.0", "0          1.6    1.0    0.1     0.2")
+    path = tmp_path / "v1.txt"
+    path.write_text(text)
+    scene = load_scene(path)
+    kind = scene.lines[0].segments[0].type
+    assert (kind.Cd_normal, kind.Ca_normal, kind.Ca_tangential) == (1.6, 1.0, 0.2)
+    np.testing.assert_allclose(kind.Cd_tangential, np.pi * 0.1)  # CdAx: MoorDyn's pi d reference
+    assert any("read by position as MoorDyn-C reads them" in note for note in scene.notes)
+
+
+def test_a_toml_gives_the_files_coupled_body_a_motion_and_the_current_a_profile(tmp_path):
+    scene_file = tmp_path / "wrap.toml"
+    body = '[bodies.body1.motion]\nkind = "harmonic"\namplitude = [2, 0, 0, 0, 0, 5]\nperiod = 10.0\n'
+    current = '[environment]\ncurrent_profile = { z = [-320, 0], velocity = [[0.1, 0, 0], [0.8, 0, 0]] }\n'
+    scene_file.write_text(f'[moordyn]\nfile = "{data("lines_body.txt")}"\n{body}{current}')
+    scene = load_scene(scene_file)
+    assert scene.bodies["body1"].motion.kind == "harmonic"
+    np.testing.assert_allclose(scene.bodies["body1"].motion.amplitude, [2, 0, 0, 0, 0, np.radians(5)])
+    assert scene.environment.current_profile.z == (-320.0, 0.0)
+    assert not any("no body motion" in note for note in scene.notes)
+    for extra, key, reason in (
+            ('[bodies.body2.motion]\nkind = "fixed"\n', "bodies.body2", "no body 'body2'"),
+            ('[bodies.body1]\nmass = 5.0\n', "bodies.body1.mass", "holds motion only"),
+            ('[environment]\ncurrent = [1, 0, 0]\ncurrent_profile = "p.txt"\n', "environment.current_profile",
+             "either current")):
+        scene_file.write_text(f'[moordyn]\nfile = "{data("lines_body.txt")}"\n{extra}')
+        with pytest.raises(InputError) as error:
+            load_scene(scene_file)
+        assert f"{key}: " in error.value.message() and reason in error.value.message(), error.value.message()
+
+
+def test_the_one_list_of_refusals_is_the_table_in_the_docs():
+    """docs/scene.md "What stays refused" holds every row of moordyn_sections.REFUSED as written there."""
+    from cablefem.io.moordyn_sections import REFUSED
+
+    with open(os.path.join(DATA, "..", "..", "..", "docs", "scene.md"), encoding="utf-8") as handle:
+        docs = handle.read()
+    for what, instead in REFUSED.values():
+        assert f"| {what.replace('|', chr(92) + '|')} | {instead} |" in docs, what
+
+
+SHARED = """--------------------- MoorDyn Input File ------------------------------------
+two coupled bodies, each moored to one anchor, and a shared line between them (lines.txt's line type)
+----------------------- LINE TYPES ------------------------------------------
+TypeName   Diam    Mass/m     EA         BA/-zeta    EI         Cd     Ca     CdAx    CaAx
+(name)     (m)     (kg/m)     (N)        (N-s/-)     (N-m^2)    (-)    (-)    (-)     (-)
+main       0.09    77.7066    384.243E6  -0.8        0          1.6    1.0    0.1     0.0
+---------------------------- BODIES -----------------------------------------------------
+ID   Attachment  X0     Y0    Z0    r0      p0     y0     Mass  CG*      I*       Volume  CdA*   Ca
+(#)  (-)         (m)    (m)   (m)   (deg)   (deg)  (deg)  (kg)  (m)      (kg-m^2) (m^3)   (m^2)  (-)
+1    Coupled     0.0    0.0   0     0       0      0      0     0        0        0       0      0
+2    Coupled     400.0  0.0   0     0       0      180    0     0        0        0       0      0
+---------------------- POINTS --------------------------------
+ID    Type      X       Y       Z       Mass   Volume  CdA    Ca
+(#)   (-)       (m)     (m)     (m)     (kg)   (m^3)   (m^2)  (-)
+1     Fixed     -800.0  0       -320.0  0      0       0      0
+2     Body1     -5.0    0       -20.0   0      0       0      0
+3     Body1     5.0     0       -20.0   0      0       0      0
+4     Body2     5.0     0       -20.0   0      0       0      0
+5     Body2     -5.0    0       -20.0   0      0       0      0
+6     Fixed     1200.0  0       -320.0  0      0       0      0
+---------------------- LINES ----------------------------------------
+ID   LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
+(#)   (name)     (#)      (#)       (m)       (-)     (-)
+1     main       1        2         902.2     20      -
+2     main       3        4         420.0     20      -
+3     main       5        6         902.2     20      -
+---------------------- OPTIONS -----------------------------------------
+320           WtrDpth       water depth (m)
+------------------------- need this line --------------------------------------
+"""
+
+
+def test_a_shared_line_between_two_coupled_bodies(tmp_path, capsys):
+    """Two coupled bodies (the second yawed 180 deg: its point at x = +5 in its frame is at x = 395),
+    each moored to an anchor, and a line shared between them: three strings, the shared one between
+    two body points; the statics solve, and by symmetry the shared line's ends carry equal tensions
+    (1e-6) as do the two mooring legs."""
+    path = tmp_path / "shared.txt"
+    path.write_text(SHARED)
+    scene = load_scene(path)
+    assert kinds(scene)[1] == {"body1": "coupled", "body2": "coupled"}
+    shared = scene.lines[1]
+    assert shared.ends == ("point3", "point4") and shared.prescribed == (True, True)
+    np.testing.assert_allclose([shared.anchor, shared.fairlead], [[5, 0, -20], [395, 0, -20]], atol=1e-12)
+    lines = static_json(path, tmp_path, capsys)["lines"]
+    np.testing.assert_allclose(lines[1]["anchor_tension"], lines[1]["fairlead_tension"], rtol=1e-6)
+    assert scene.lines[2].ends == ("point6", "point5")  # its fixed end first
+    np.testing.assert_allclose(lines[0]["fairlead_tension"], lines[2]["fairlead_tension"], rtol=1e-6)
+
+
+def test_lines_txt_tensions_agree_with_moorpys_system_reading_the_same_file(tmp_path, capsys):
+    """MoorPy's System reads lines.txt itself (g set to MoorDyn's 9.80665, which cablefem reads as
+    the default of a file without g): fairlead and anchor tensions within 3e-5 (60 P2 elements per
+    line: converged to 1e-6; the 1.3e-5 left is the seabed, springs of kBot here, rigid in MoorPy)."""
+    mp = pytest.importorskip("moorpy")
+    wrap = tmp_path / "wrap.toml"
+    wrap.write_text(f'[moordyn]\nfile = "{data("lines.txt")}"\nelements = 60\norder = 2\n')
+    lines = static_json(wrap, tmp_path, capsys)["lines"]
+    system = mp.System(file=data("lines.txt"), g=9.80665)
+    system.initialize()
+    system.solveEquilibrium()
+    for entry, line in zip(lines, system.lineList):
+        np.testing.assert_allclose([entry["anchor_tension"], entry["fairlead_tension"]], [line.TA, line.TB], rtol=3e-5)

@@ -1,0 +1,184 @@
+"""Speed against one common reference (issue 16, part 3): cablefem and MoorDyn-C on the frictionless
+flume chain with aligned physics (``validation.moordyn_aligned``), both measured against the same
+converged runs.
+
+The study in ``run.py`` measures each code against its own finest run. Here every run of both codes
+is measured against two references, the finest run of each code with aligned physics
+(``validation/moordyn_aligned``): MoorDyn-C at 1280 segments (snap; 640 in slow surge) and
+cablefem P1 x 640 (snap; P1 x 320 in slow surge), which differ by 1.1 % (snap) and 0.02 % (slow
+surge) RMS. For each MoorDyn error level (its runs at the work-precision study's Pareto settings)
+the cheapest cablefem run at least as accurate against the same reference gives the time ratio.
+
+Times are CPU seconds of the process (``time.process_time``), not wall time: the runs were made on
+a shared machine whose load made wall times vary by 3-10x. cablefem's: statics, set-up and steps,
+warm (numba's kernels loaded); MoorDyn's: its ``Create``, ``Init`` and ``Step`` calls only (the
+peer's Python bookkeeping left out, in MoorDyn's favour), its initial-condition solve skipped
+(TmaxIC 0), coupled every 0.01 s as in the study. Cheap runs are repeated and the least time kept.
+
+``python -m verification.work_precision.common [--cache DIR] [--out DIR]`` (the references come
+from the aligned study's cache); writes ``common.json``.
+"""
+
+import argparse
+import contextlib
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+if __package__ in (None, ""):
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+
+from cablefem.study import write_json  # noqa: E402
+from validation.moordyn.run import COUPLING_DT, FLUME_FILE_SEGMENTS, run_moordyn_case  # noqa: E402
+from validation.moordyn_aligned.run import (DURATION, MOORDYN_FILE, MOTIONS, WINDOW, aligned_scene,  # noqa: E402
+                                            cablefem, compare, moordyn)
+from verification.work_precision.runs import run_cablefem_scene  # noqa: E402
+
+HERE = Path(__file__).resolve().parent
+#: MoorDyn's settings: the work-precision study's Pareto points (its results.json)
+MOORDYN_ROWS = {"snap": [(20, 5e-3), (40, 2.5e-3), (80, 2.5e-3), (160, 2e-3), (320, 5e-4)],
+                "slow": [(20, 5e-3), (40, 2.5e-3), (80, 2.5e-3), (160, 2e-3), (160, 1.25e-3), (320, 6.25e-4)]}
+#: cablefem's: (order, elements, dt, Newton tolerance), the study's Pareto rows and finer ones
+CABLEFEM_ROWS = {
+    "snap": [(1, 14, 0.16, 1e-4), (2, 7, 0.16, 1e-4), (2, 10, 0.16, 1e-4), (1, 40, 0.16, 1e-4), (1, 80, 0.08, 1e-4),
+             (2, 40, 0.08, 1e-4), (1, 160, 0.04, 1e-4), (1, 160, 0.02, 1e-4), (1, 226, 0.04, 1e-4),
+             (1, 226, 0.02, 1e-4), (1, 320, 0.04, 1e-4), (2, 113, 0.02, 1e-4), (2, 160, 0.02, 1e-4),
+             (1, 320, 0.02, 1e-4), (1, 320, 0.01, 1e-4), (2, 160, 0.01, 1e-4), (1, 640, 0.005, 1e-4)],
+    "slow": [(1, 14, 0.17, 1e-4), (2, 14, 0.17, 1e-4), (1, 28, 0.17, 1e-4), (1, 57, 0.085, 1e-4),
+             (2, 28, 0.085, 1e-4), (1, 80, 0.04, 1e-4), (1, 113, 0.04, 1e-4), (2, 57, 0.04, 1e-4),
+             (1, 160, 0.02, 1e-4), (2, 80, 0.02, 1e-4), (1, 320, 0.01, 1e-4), (2, 80, 0.01, 1e-4),
+             # without friction BDF2's time error decides below 0.3 %: finer steps on coarse meshes
+             (1, 40, 0.01, 1e-4), (2, 20, 0.01, 1e-4), (2, 40, 0.01, 1e-4), (1, 80, 0.01, 1e-4),
+             (2, 40, 0.005, 1e-4), (1, 80, 0.005, 1e-4), (2, 40, 0.0025, 1e-4), (2, 80, 0.0025, 1e-4)]}
+REFERENCES = {"snap": {"moordyn": (1280, 2e-5, COUPLING_DT), "cablefem": (1, 640, 0.000625, 1e-8)},
+              "slow": {"moordyn": (640, 1e-4, 5e-4), "cablefem": (1, 320, 0.0025, 1e-8)}}
+REPEATS = ((0.2, 5), (1.0, 3), (3.0, 2))
+
+
+def least_cpu(run):
+    """``run()`` -> (result, cpu seconds), repeated per ``REPEATS``, the least CPU time kept."""
+    result, cpu = run()
+    count = next((n for limit, n in REPEATS if cpu < limit), 1)
+    for _ in range(count - 1):
+        cpu = min(cpu, run()[1])
+    return result, cpu
+
+
+@contextlib.contextmanager
+def moordyn_cpu_clock():
+    """Inside the block, MoorDyn's Create, Init and Step add their CPU seconds to the yielded list's item 0."""
+    import moordyn
+
+    spent, saved = [0.0], {}
+    for name in ("Create", "Init", "Step"):
+        function = saved[name] = getattr(moordyn, name)
+
+        def timed(*args, _function=function):
+            begin = time.process_time()
+            try:
+                return _function(*args)
+            finally:
+                spent[0] += time.process_time() - begin
+        setattr(moordyn, name, timed)
+    try:
+        yield spent
+    finally:
+        for name, function in saved.items():
+            setattr(moordyn, name, function)
+
+
+def moordyn_row(motion, segments, dtM):
+    """MoorDyn, frictionless, at ``segments`` and ``dtM``: (t, tension) dict and its CPU seconds."""
+    from cablefem.scenes import flume_scene
+
+    scene = flume_scene("flat", MOTIONS[motion])
+    with moordyn_cpu_clock() as spent:
+        run = run_moordyn_case(MOORDYN_FILE, scene, DURATION[motion],
+                               {"segments": segments / FLUME_FILE_SEGMENTS, "dtM": dtM, "ic_dtM": None},
+                               options={"TmaxIC": 0.0, "FrictionCoefficient": 0.0})
+    return {"t": run["t"][1:], "tension": np.linalg.norm(run["forces_on_point"][1:, 0], axis=1)}, spent[0]
+
+
+def cablefem_row(motion, order, elements, dt, tolerance):
+    """cablefem on the aligned scene: (t, tension) dict and its CPU seconds."""
+    scene = aligned_scene(motion, order, elements, dt, tolerance=tolerance)
+    begin = time.process_time()
+    run = run_cablefem_scene(scene)
+    return run, time.process_time() - begin
+
+
+def cheapest(moordyn_rows, cablefem_rows, key):
+    """For every MoorDyn row (by CPU time; a row joins when 2 % better than the last): the cheapest
+    cablefem row at least as accurate in ``key`` ("moordyn" or "cablefem" reference) and the ratio."""
+    table, best = [], np.inf
+    for md in sorted(moordyn_rows, key=lambda r: r["cpu_s"]):
+        error = md["error"][key]["rms"]
+        if error >= best * 0.98:
+            continue
+        best = error
+        good = [r for r in cablefem_rows if r["error"][key]["rms"] <= error]
+        cf = min(good, key=lambda r: r["cpu_s"]) if good else None
+        table.append({"moordyn": md["label"], "error": error, "moordyn_peak": md["error"][key]["peak"],
+                      "moordyn_cpu_s": md["cpu_s"], "cablefem": cf["label"] if cf else None,
+                      "cablefem_error": cf["error"][key]["rms"] if cf else None,
+                      "cablefem_peak": cf["error"][key]["peak"] if cf else None,
+                      "cablefem_cpu_s": cf["cpu_s"] if cf else None,
+                      "ratio": cf["cpu_s"] / md["cpu_s"] if cf else None})
+    return table
+
+
+def run(cache=None, log=print):
+    """Both codes' rows against both references, and the ratio tables, per motion."""
+    from verification.work_precision.run import warm_up
+
+    warm_up()
+    results = {"clock": "process CPU seconds", "references": {}}
+    for motion in ("slow", "snap"):
+        ref = REFERENCES[motion]
+        refs = {"moordyn": moordyn(motion, *ref["moordyn"], cache=cache),
+                "cablefem": cablefem(motion, *ref["cablefem"], cache=cache)}
+        t_from = WINDOW[motion]
+        results["references"][motion] = {"moordyn": ref["moordyn"], "cablefem": ref["cablefem"],
+                                         "cablefem_vs_moordyn": compare(refs["cablefem"], refs["moordyn"], t_from)}
+        rows = {"moordyn": [], "cablefem": []}
+        for segments, dtM in MOORDYN_ROWS[motion]:
+            series, cpu = least_cpu(lambda: moordyn_row(motion, segments, dtM))
+            rows["moordyn"].append({"label": f"{segments} segments, dtM {dtM:g}", "cpu_s": cpu,
+                                    "error": {k: compare(series, r, t_from) for k, r in refs.items()}})
+        for settings in CABLEFEM_ROWS[motion]:
+            series, cpu = least_cpu(lambda: cablefem_row(motion, *settings))
+            order, elements, dt, tolerance = settings
+            rows["cablefem"].append({"label": f"P{order} x {elements}, dt {dt:g}", "cpu_s": cpu,
+                                     "error": {k: compare(series, r, t_from) for k, r in refs.items()}})
+        for code in rows:
+            for row in rows[code]:
+                e = row["error"]
+                log(f"  {motion} {code:<8} {row['label']:<26} {row['cpu_s']:7.3f} s CPU | vs MoorDyn ref: RMS "
+                    f"{100 * e['moordyn']['rms']:6.2f} % peak {100 * e['moordyn']['peak']:+6.2f} % | vs cablefem ref: "
+                    f"RMS {100 * e['cablefem']['rms']:6.2f} % peak {100 * e['cablefem']['peak']:+6.2f} %")
+        results[motion] = {"rows": rows, "ratios": {key: cheapest(rows["moordyn"], rows["cablefem"], key)
+                                                    for key in ("moordyn", "cablefem")}}
+        for key, table in results[motion]["ratios"].items():
+            log(f"== {motion}, against the {key} reference")
+            for r in table:
+                log(f"  MoorDyn {r['moordyn']:<26} RMS {100 * r['error']:6.2f} % peak {100 * r['moordyn_peak']:+6.2f} % "
+                    f"{r['moordyn_cpu_s']:7.3f} s | cablefem {r['cablefem']} "
+                    + ("" if r["cablefem"] is None else
+                       f"RMS {100 * r['cablefem_error']:6.2f} % peak {100 * r['cablefem_peak']:+6.2f} % "
+                       f"{r['cablefem_cpu_s']:7.3f} s | ratio {r['ratio']:.2f}"))
+    return results
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--cache", type=Path, default=None, help="the aligned study's run cache (references)")
+    parser.add_argument("--out", type=Path, default=HERE)
+    args = parser.parse_args(argv)
+    results = run(cache=args.cache)
+    write_json(args.out / "common.json", results)
+
+
+if __name__ == "__main__":
+    main()
