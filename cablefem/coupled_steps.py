@@ -19,8 +19,11 @@ substitutions per junction end and a 3 x 3 solve per junction; nothing dense or 
 whole network. Steps that do not converge are halved, as for one line.
 """
 
+import warnings
+
 import numpy as np
 
+from . import policy
 from .errors import ConvergenceError
 from .network import junction_ends
 from .loads import State
@@ -39,7 +42,9 @@ class JunctionSteps:
         self.newton_iterations = 0
         self.halvings = 0
         self.cache = {}  # times[-1] -> forces per integrator, for ``march`` of each member
+        # the compiled loop (``cablefem.junction_march``) where every member marches compiled
         self.compiled = all(getattr(integ, "marcher", None) is not None for integ in integrators)
+        self.group = None  # its ``junction_march.Group``, built at the first march
         # per integrator: its junction ends as (end, row of the end in the free DOFs, junction)
         self.ends = [[] for _ in integrators]
         for name, members in junctions.items():
@@ -111,36 +116,51 @@ class JunctionSteps:
         return forces
 
     def _march_compiled(self, times, forces):
-        """Compiled steps to ``times`` until done or stopped; the steps taken."""
-        from .junction_march import group_steps
+        """Compiled steps (``junction_march.group_steps``) to ``times`` until done or stopped, the
+        forces into ``forces`` (members, m, 2, 3); the steps taken."""
+        from . import junction_march
 
         members = self.integrators
-        problems = []
-        for integ in members:
-            ends, fractions = integ.marcher.ends(integ, times)
-            problems.append(integ.marcher.problem(integ, ends, fractions))
-        n = max(integ.fused.n for integ in members)
-        Z, S, yE = np.zeros((len(members), n, 6)), np.zeros((len(members), 6, 6)), np.zeros((len(members), 6))
-        dq = np.zeros(3 * len(self.junctions))
-        meta = self._meta()
-        _, taken = group_steps(tuple(problems), meta, len(self.junctions), times, forces, Z, S, yE, dq,
-                               self.max_iterations, members[0].MAX_GROWTH)
+        problems = tuple(integ.marcher.problem(integ, *integ.marcher.ends(integ, times)) for integ in members)
+        if self.group is None:
+            self.group = self._group(problems)
+            if self.group is None:
+                self.compiled = False
+                return 0
+        _, taken = junction_march.group_steps(problems, self.group, times, forces)
         for integ, prob in zip(members, problems):
             integ.marcher.finish(integ, prob)
-            integ.residual_rows = prob.rows
-        self.newton_iterations = int(sum(integ.counters[1] for integ in members[:1]))
+            if taken:  # BDF2's factors of the last step, as the Python steps leave them
+                c0 = float(prob.clock[0]["c0"])
+                integ.c0, integ.t_eval, integ.factors = c0, integ.t, (c0, c0 * c0, 1.0)
+                integ.x_hist, integ.v_hist = prob.x_hist.copy(), prob.v_hist.copy()
+        self.newton_iterations += int(problems[0].counters[policy.ITERATIONS])
+        self.halvings += int(problems[0].counters[policy.REJECTED])
         return int(taken)
 
-    def _meta(self):
-        """Per member and end slot: the junction end's row in the band order (-1: none), the
-        junction's index and the end's node, (members, 2, 3)."""
+    def _group(self, problems):
+        """The compiled loop's ``junction_march.Group`` of these members, or None (with a warning)
+        where their Problems differ in numba type: one compiled loop serves one type."""
+        import numba
+
+        from . import junction_march
+
+        types = {numba.typeof(prob) for prob in problems}
+        if len(types) > 1:
+            warnings.warn("junction steps: the strings' compiled problems differ in type, so their steps run "
+                          "in the Python loop around the compiled evaluations (several times slower)",
+                          RuntimeWarning, stacklevel=2)
+            return None
         names = list(self.junctions)
-        meta = np.full((len(self.integrators), 2, 3), -1, dtype=np.int64)
-        for k, ends in enumerate(self.ends):
-            for s, (_, _, name, dof) in enumerate(ends):
-                row = int(np.flatnonzero(self.integrators[k].fused.free_order == dof)[0])
-                meta[k, s] = (row, names.index(name), dof)
-        return meta
+        ends = np.full((len(self.integrators), 2, 3), -1, dtype=np.int64)
+        for k, member in enumerate(self.ends):
+            order = list(self.integrators[k].fused.free_order)
+            for s, (_, _, name, dof) in enumerate(member):
+                ends[k, s] = (order.index(dof), names.index(name), dof)
+        leaders = np.array([(k, (self.integrators[k].fem.anchor_dof, self.integrators[k].fem.fairlead_dof)[end])
+                            for k, end in (self.junctions[name][0] for name in names)], dtype=np.int64)
+        size = max(integ.fused.n for integ in self.integrators)
+        return junction_march.group(ends, leaders, size, self.max_iterations, self.integrators[0].MAX_GROWTH)
 
     def advance(self, target):
         """Advance by ``target`` [s] in attempts of whole eighths (``march.FRACTIONS``) of it, as a

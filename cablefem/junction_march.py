@@ -9,22 +9,49 @@ dq; each string takes y + Z S (dq - y_E). A step converges when every string's i
 its increment tolerance; a step that does not is halved at the splits where the prescribed ends are
 known (``march.FRACTIONS``), and the loop stops where that is not enough (the Python steps go on).
 
-The strings' Problems differ in type where their loads do (a string carrying the junction's point
-has the node load), so the loops over them are unrolled (``numba.literal_unroll``).
+The strings' Problems have one numba type (the catalog's records and the seabed's projector are
+the same for every line; only sizes differ), so they come in a homogeneous tuple indexed by a loop
+counter, and every function here is compiled once, for that type. ``numba.literal_unroll`` over
+them (the first version) versioned each loop body per element and took minutes to compile.
 """
 
-import numpy as np
-from numba import literal_unroll, njit
+from collections import namedtuple
 
-from . import policy
+import numpy as np
+from numba import njit
+
+from . import kernels, policy
 from .banded import lu_solve
-from .march import FRACTIONS, accept, begin, evaluate, increment, place_ends, set_base, take_step
+from .march import FRACTIONS, _copy_rows, accept, begin, evaluate, increment, place_ends, set_base, take_step
 
 #: what ``group_steps`` returns: every step taken, or the loop stopped at a step (Python goes on)
 DONE, STOPPED = 0, 1
 
+#: the junctions of a group and the scratch of its steps: per string and end slot (fairlead,
+#: anchor) the junction end's row in the band order (-1: none), its junction and its node,
+#: ``ends`` (strings, 2, 3); the number of junctions; the columns Z (strings, n, 6) of K^-1 at each
+#: string's junction ends, their end stiffness S (strings, 6, 6) and the string's own step there
+#: yE (strings, 6); the junctions' step dq (3 junctions,); the string and node whose predictor
+#: places each junction at the start of a step, ``leaders`` (junctions, 2), and that place ``at``
+#: (junctions, 3); Newton's iterations per attempt and the growth of a step; scratch of the small
+#: solves: the junctions' system (3 J, 3 J), a string's end columns ZE and their inverse's work
+#: (6, 6), a column and its correction mu (6,)
+Group = namedtuple("Group", "ends junctions Z S yE dq leaders at max_iterations growth "
+                            "system ZE work column mu")
 
-@njit(cache=True)
+
+def group(ends, leaders, n, max_iterations, growth):
+    """A ``Group`` for ``ends`` (strings, 2, 3) and ``leaders`` (junctions, 2), the strings'
+    bands n unknowns at most."""
+    m, junctions = ends.shape[0], leaders.shape[0]
+    return Group(np.ascontiguousarray(ends, dtype=np.int64), junctions, np.zeros((m, n, 6)),
+                 np.zeros((m, 6, 6)), np.zeros((m, 6)), np.zeros(3 * junctions),
+                 np.ascontiguousarray(leaders, dtype=np.int64), np.zeros((junctions, 3)), int(max_iterations),
+                 float(growth), np.zeros((3 * junctions, 3 * junctions)), np.zeros((6, 6)), np.zeros((6, 6)),
+                 np.zeros(6), np.zeros(6))
+
+
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def _solve_small(A, b, n):
     """Solve A x = b (n x n, in place: x into b) by Gaussian elimination with partial pivoting;
     False if A is singular."""
@@ -52,10 +79,9 @@ def _solve_small(A, b, n):
     return True
 
 
-@njit(cache=True)
-def _inverse(M, out, n):
-    """out = M^-1 (n x n) column by column; False if singular."""
-    work, column = np.empty((n, n)), np.empty(n)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def _inverse(M, out, n, work, column):
+    """out = M^-1 (n x n) column by column (work, column: scratch); False if singular."""
     for j in range(n):
         for r in range(n):
             for c in range(n):
@@ -68,15 +94,22 @@ def _inverse(M, out, n):
     return True
 
 
-@njit(cache=True)
-def _linearise(p, k, ends, Z, S, yE, scratch):
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def _linearise(p, k, g):
     """String k at its trial: residual and tangent, its own step (p.step, band order), the columns
     Z[k] of its junction ends and their end stiffness S[k]; False if its tangent is singular."""
     if evaluate(p, policy.FLAG[1], policy.FLAG[0]) != 0:
         return False
     if np.isnan(increment(p, policy.FLAG[1])):
         return False
-    m = 0
+    ends, Z, scratch = g.ends, g.Z, p.original  # ``original`` is the policy's, unused here
+    m = np.int64(0)  # not literal: numba would compile ``_inverse`` once more for a literal 0
+    for s in range(2):
+        if ends[k, s, 0] >= 0:
+            m += 3
+    if m == 0:
+        return True
+    ZE, j = g.ZE, 0
     for s in range(2):
         row = ends[k, s, 0]
         if row < 0:
@@ -86,30 +119,26 @@ def _linearise(p, k, ends, Z, S, yE, scratch):
             scratch[3 * row + c] = 1.0
             lu_solve(p.lu, scratch.shape[0], p.mesh.kl, p.mesh.ku, p.ipiv, scratch)
             for i in range(scratch.shape[0]):
-                Z[k, i, m] = scratch[i]
-            yE[k, m] = p.step[3 * row + c]
-            m += 1
-    if m:
-        ZE = np.empty((m, m))
-        i = 0
-        for s in range(2):
-            row = ends[k, s, 0]
-            if row < 0:
-                continue
-            for c in range(3):
-                for j in range(m):
-                    ZE[i, j] = Z[k, 3 * row + c, j]
-                i += 1
-        if not _inverse(ZE, S[k], m):
-            return False
-    return True
+                Z[k, i, j] = scratch[i]
+            g.yE[k, j] = p.step[3 * row + c]
+            i = 0
+            for t in range(2):  # column j of ZE: Z's rows at the junction ends
+                if ends[k, t, 0] >= 0:
+                    for d in range(3):
+                        ZE[i, j] = scratch[3 * ends[k, t, 0] + d]
+                        i += 1
+            j += 1
+    return _inverse(ZE, g.S[k], m, g.work, g.column)
 
 
-@njit(cache=True)
-def _junction_step(ends, S, yE, junctions, dq):
-    """dq (3 J) from sum over strings of S_k (dq_E - y_E,k) = 0 at every junction."""
-    n = 3 * junctions
-    A, b = np.zeros((n, n)), np.zeros(n)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def _junction_step(g):
+    """g.dq (3 J) from sum over strings of S_k (dq_E - y_E,k) = 0 at every junction."""
+    ends, S, yE = g.ends, g.S, g.yE
+    n = 3 * g.junctions
+    A, b = g.system, g.dq
+    A[:] = 0.0
+    b[:] = 0.0
     for k in range(ends.shape[0]):
         a = 0
         for s in range(2):
@@ -126,54 +155,43 @@ def _junction_step(ends, S, yE, junctions, dq):
                         b[3 * ends[k, s, 1] + c] += value * yE[k, 3 * bb + d]
                 bb += 1
             a += 1
-    ok = _solve_small(A, b, n)
-    dq[:n] = b
-    return ok
+    return _solve_small(A, b, n)
 
 
-@njit(cache=True)
-def _agree(probs, ends, junctions):
-    """Every string end at a junction where the junction's first string predicts it."""
-    at, seen = np.zeros((junctions, 3)), np.zeros(junctions, dtype=np.bool_)
-    k = 0
-    for p in literal_unroll(probs):
-        for s in range(2):
-            j, node = ends[k, s, 1], ends[k, s, 2]
-            if ends[k, s, 0] < 0:
-                continue
-            if not seen[j]:
-                seen[j] = True
-                for c in range(3):
-                    at[j, c] = p.X1[node, c]
-            else:
-                for c in range(3):
-                    p.X1[node, c] = at[j, c]
-        k += 1
-
-
-@njit(cache=True)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def _begin(p, h):
-    """BDF2's start of a step of h, the trial at the predictor (a helper of its own: numba unrolls
-    the loops over the strings only around calls, not inlined bodies)."""
+    """BDF2's start of a step of h, the trial at the predictor."""
     begin(p, h)
-    p.X1[:] = p.guess
+    _copy_rows(p.X1, p.guess)
 
 
-@njit(cache=True)
-def _place(p, k, j, h):
-    place_ends(p, k, j, h)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def _lead(p, j, g):
+    """Junction j where its leader (this string, at node g.leaders[j, 1]) predicts it."""
+    for a in range(3):
+        g.at[j, a] = p.X1[g.leaders[j, 1], a]
 
 
-@njit(cache=True)
-def _update(p, k, ends, Z, S, yE, dq):
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def _agree(p, k, g):
+    """String k's junction ends where their junctions' leaders predict them (``g.at``)."""
+    for s in range(2):
+        if g.ends[k, s, 0] >= 0:
+            for a in range(3):
+                p.X1[g.ends[k, s, 2], a] = g.at[g.ends[k, s, 1], a]
+
+
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def _update(p, k, g):
     """String k's step y + Z S (dq_E - y_E) taken from its trial; True if its increment is below
     its increment tolerance."""
+    ends, Z, S = g.ends, g.Z, g.S
     m = 0
-    mu = np.zeros(6)
+    mu = g.mu
     for s in range(2):
         if ends[k, s, 0] >= 0:
             for c in range(3):
-                mu[m] = dq[3 * ends[k, s, 1] + c] - yE[k, m]
+                mu[m] = g.dq[3 * ends[k, s, 1] + c] - g.yE[k, m]
                 m += 1
     largest = 0.0
     for i in range(p.step.shape[0]):
@@ -186,85 +204,97 @@ def _update(p, k, ends, Z, S, yE, dq):
     return largest <= p.settings.increment_tolerance
 
 
-@njit(cache=True)
-def _rows(p):
-    """The step residual at the converged trial (the reactions read it)."""
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def _rows(p, k, g):
+    """The step residual at the converged trial into p.rows (the reactions read it), and the
+    string's own rows at its junction ends into p.base (Newton's base, free once converged): its
+    elements without the node loads there, the junction's own point riding on it as a joint
+    (``JunctionSteps.reactions``). False if a row is not finite."""
     evaluate(p, policy.FLAG[0], policy.FLAG[0])
+    for i in range(p.rows.shape[0]):
+        for a in range(3):
+            if not np.isfinite(p.rows[i, a]):
+                return False
+    if g.ends[k, 0, 0] < 0 and g.ends[k, 1, 0] < 0:
+        return True
+    c0 = p.clock[0].c0
+    nb = p.rhs.shape[0]
+    band2 = p.band.reshape((nb, 2 * p.mesh.kl + p.mesh.ku + 1)).T  # unused without a tangent
+    p.base[:] = 0.0
+    kernels.assemble(p.mesh, p.bed, p.pts, p.work, (p.X1, p.V1, p.A1), (c0, c0 * c0), policy.FLAG[0],
+                     policy.FLAG[0], p.base, band2, p.end_elements)
+    return True
 
 
-@njit(cache=True)
-def _accept(p, h):
-    accept(p, h)
-    p.counters[policy.STEPS] += 1
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def _forces(p, k, g, forces, i):
+    """String k's forces on its fairlead and anchor after step i into forces[k, i] (2, 3): minus
+    its rows there, at a junction end its own (``_rows``)."""
+    for e in range(2):
+        node = p.fairlead_node if e == 0 else p.anchor_node
+        own = False
+        for s in range(2):
+            own = own or (g.ends[k, s, 0] >= 0 and g.ends[k, s, 2] == node)
+        for a in range(3):
+            forces[k, i, e, a] = -(p.base[node, a] if own else p.rows[node, a])
 
 
-@njit(cache=True)
-def _count(p, counter):
-    p.counters[counter] += 1
-
-
-@njit(cache=True)
-def _forces(p, forces, i, k):
-    for a in range(3):
-        forces[i, k, 0, a] = -p.rows[p.fairlead_node, a]
-        forces[i, k, 1, a] = -p.rows[p.anchor_node, a]
-
-
-@njit(cache=True)
-def group_attempt(probs, ends, junctions, h, Z, S, yE, dq, max_iterations):
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def group_attempt(probs, g, h):
     """One BDF2 step of h of every string (the ends placed: ``place_ends``); True if it converged."""
-    for p in literal_unroll(probs):
-        _begin(p, h)
-    _agree(probs, ends, junctions)
-    for _ in range(max_iterations):
-        k, ok = 0, True
-        for p in literal_unroll(probs):
-            _count(p, policy.ITERATIONS)
-            ok = ok and _linearise(p, k, ends, Z, S, yE, p.original)
-            k += 1
-        if not ok or not _junction_step(ends, S, yE, junctions, dq):
+    for k in range(len(probs)):
+        _begin(probs[k], h)
+    for j in range(g.junctions):
+        _lead(probs[g.leaders[j, 0]], j, g)
+    for k in range(len(probs)):
+        _agree(probs[k], k, g)
+    for _ in range(g.max_iterations):
+        ok = True
+        for k in range(len(probs)):
+            probs[k].counters[policy.ITERATIONS] += 1
+            ok = ok and _linearise(probs[k], k, g)
+        if not ok or not _junction_step(g):
             return False
-        converged, k = True, 0
-        for p in literal_unroll(probs):
-            converged = _update(p, k, ends, Z, S, yE, dq) and converged
-            k += 1
+        converged = True
+        for k in range(len(probs)):
+            converged = _update(probs[k], k, g) and converged
         if converged:
-            for p in literal_unroll(probs):
-                _rows(p)
-            for p in literal_unroll(probs):
-                _accept(p, h)
+            for k in range(len(probs)):
+                if not _rows(probs[k], k, g):
+                    return False
+            for k in range(len(probs)):
+                accept(probs[k], h)
+                probs[k].counters[policy.STEPS] += 1
             return True
     return False
 
 
-@njit(cache=True)
-def group_steps(probs, ends, junctions, times, forces, Z, S, yE, dq, max_iterations, growth):
+@njit(cache=True, _nrt=False)
+def group_steps(probs, g, times, forces):
     """Steps of every string to ``times`` (m,), each halved at the splits of ``march.FRACTIONS``
-    when Newton fails; each string's (fairlead, anchor) forces into forces[k] (m, 2, 3).
+    when Newton fails; string k's (fairlead, anchor) forces into forces[k] (m, 2, 3).
     Returns (DONE or STOPPED, the steps taken)."""
-    for k in range(times.shape[0]):
+    for i in range(times.shape[0]):
         start = probs[0].clock[0].t
-        span = times[k] - start
+        span = times[i] - start
         done, parts = 0, FRACTIONS
         last = probs[0].clock[0].last_h
-        while last > 0.0 and parts > 1 and span * parts / FRACTIONS > growth * last:
+        while last > 0.0 and parts > 1 and span * parts / FRACTIONS > g.growth * last:
             parts //= 2
         while done < FRACTIONS:
             parts = min(parts, FRACTIONS - done)
             h = span * parts / FRACTIONS
-            for p in literal_unroll(probs):
-                _place(p, k, done + parts, h)
-            if group_attempt(probs, ends, junctions, h, Z, S, yE, dq, max_iterations):
+            for k in range(len(probs)):
+                place_ends(probs[k], i, done + parts, h)
+            if group_attempt(probs, g, h):
                 done += parts
                 parts = min(2 * parts, FRACTIONS)
             elif parts == 1:
-                return STOPPED, k
+                return STOPPED, i
             else:
-                for p in literal_unroll(probs):
-                    _count(p, policy.REJECTED)
+                for k in range(len(probs)):
+                    probs[k].counters[policy.REJECTED] += 1
                 parts //= 2
-        i = 0
-        for p in literal_unroll(probs):
-            _forces(p, forces, i, k)
-            i += 1
+        for k in range(len(probs)):
+            _forces(probs[k], k, g, forces, i)
     return DONE, times.shape[0]
