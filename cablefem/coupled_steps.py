@@ -127,10 +127,10 @@ class JunctionSteps:
             if self.group is None:
                 self.compiled = False
                 return 0
-        _, taken = junction_march.group_steps(problems, self.group, times, forces)
+        status, taken = junction_march.group_steps(problems, self.group, times, forces)
         for integ, prob in zip(members, problems):
             integ.marcher.finish(integ, prob)
-            if taken:  # BDF2's factors of the last step, as the Python steps leave them
+            if status == junction_march.DONE:  # BDF2's factors of the last step, as the Python steps leave them
                 c0 = float(prob.clock[0]["c0"])
                 integ.c0, integ.t_eval, integ.factors = c0, integ.t, (c0, c0 * c0, 1.0)
                 integ.x_hist, integ.v_hist = prob.x_hist.copy(), prob.v_hist.copy()
