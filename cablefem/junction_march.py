@@ -9,10 +9,15 @@ dq; each string takes y + Z S (dq - y_E). A step converges when every string's i
 its increment tolerance; a step that does not is halved at the splits where the prescribed ends are
 known (``march.FRACTIONS``), and the loop stops where that is not enough (the Python steps go on).
 
-The strings' Problems have one numba type (the catalog's records and the seabed's projector are
-the same for every line; only sizes differ), so they come in a homogeneous tuple indexed by a loop
-counter, and every function here is compiled once, for that type. ``numba.literal_unroll`` over
-them (the first version) versioned each loop body per element and took minutes to compile.
+Compile time. The strings' Problems have one numba type (the catalog's records and the seabed's
+projector are the same for every line; only sizes differ), so they come in a homogeneous tuple
+indexed by a loop counter, and every function here is compiled once, for that type (the two loops
+once more for another number of strings). ``numba.literal_unroll`` over them (the first version)
+versioned each loop body per element and took more than five CPU-minutes. A function numba can
+call from Python carries a wrapper that unboxes every array of its arguments, ~1.6 s of compile
+per Problem and ~7 s per tuple of three: only ``group_steps`` has one. No numba runtime (the
+small solves' scratch is in the ``Group``), and no literal arguments (each compiles a callee
+once more).
 """
 
 from collections import namedtuple
@@ -27,8 +32,8 @@ from .march import FRACTIONS, _copy_rows, accept, begin, evaluate, increment, pl
 #: what ``group_steps`` returns: every step taken, or the loop stopped at a step (Python goes on)
 DONE, STOPPED = 0, 1
 
-#: the junctions of a group and the scratch of its steps: per string and end slot (fairlead,
-#: anchor) the junction end's row in the band order (-1: none), its junction and its node,
+#: the junctions of a group and the scratch of its steps: per string and each of its junction ends
+#: (two slots, -1 where unused) the end's row in the band order, its junction and its node,
 #: ``ends`` (strings, 2, 3); the number of junctions; the columns Z (strings, n, 6) of K^-1 at each
 #: string's junction ends, their end stiffness S (strings, 6, 6) and the string's own step there
 #: yE (strings, 6); the junctions' step dq (3 junctions,); the string and node whose predictor
