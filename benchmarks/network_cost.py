@@ -1,10 +1,12 @@
 """What a junction costs a run (issue 18): a crowfoot, one line from a moving platform to a free
 point carrying a clump, two legs from there to anchors (the junction joins three line ends), run
-with ``cablefem.coupled_steps.JunctionSteps``, against each of its lines alone (its junction end
-fixed where the statics put it, the compiled BDF2 march of one line). Wall time per simulated
-second, the runs alternated and repeated in one process, medians; prints a table.
+with ``cablefem.coupled_steps.JunctionSteps`` as ``cablefem run`` does (compiled:
+``cablefem.junction_march``), against each of its lines alone (its junction end fixed where the
+statics put it, the compiled BDF2 march of one line) and, with ``--python``, against the Python loop
+of the same steps. Wall time per simulated second, the runs alternated and repeated in one
+process, medians; prints a table.
 
-    python benchmarks/network_cost.py [--repeats 3] [--duration 20]
+    python benchmarks/network_cost.py [--repeats 3] [--duration 20] [--python]
 """
 
 import argparse
@@ -24,15 +26,16 @@ from cablefem.schemes import integrator_options
 SCENE = Path(__file__).with_name("crowfoot.toml")
 
 
-def network_run(scene, duration):
-    """Wall time [s] of ``duration`` simulated seconds of the whole network, and its Newton iterations."""
+def network_run(scene, duration, compiled=True):
+    """Wall time [s] of ``duration`` simulated seconds of the whole network (its junction steps
+    ``compiled`` or in the Python loop), its Newton iterations and its start states."""
     systems = [build_system(scene, line) for line in dynamic_lines(scene)]
     states, _ = start_states(scene, systems=systems)
     options = integrator_options(scene.solver)
     integrators = [INTEGRATORS["bdf2"](s, X, boundary_path(scene, line), dt=scene.solver.dt,
                                        anchor=anchor_path(scene, line), **options)
                    for s, line, X in zip(systems, scene.lines, states)]
-    junction_steps(scene, integrators)
+    junction_steps(scene, integrators).compiled = compiled
     times = np.arange(1, int(round(duration / scene.solver.dt)) + 1) * scene.solver.dt
     start = time.perf_counter()
     for integ in integrators:
@@ -66,14 +69,17 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--duration", type=float, default=20.0)
+    parser.add_argument("--python", action="store_true", help="also the junction steps' Python loop")
     args = parser.parse_args()
     scene = load_scene(SCENE)
     network_run(scene, 1.0)  # compile and warm
-    rows = {"network": [], **{line.name: [] for line in scene.lines}}
+    networks = {"network": True, **({"python loop": False} if args.python else {})}
+    rows = {**{name: [] for name in networks}, **{line.name: [] for line in scene.lines}}
     iterations = {}
     for _ in range(args.repeats):
-        wall, iterations["network"], states = network_run(scene, args.duration)
-        rows["network"].append(wall / args.duration)
+        for name, compiled in networks.items():
+            wall, iterations[name], states = network_run(scene, args.duration, compiled)
+            rows[name].append(wall / args.duration)
         for k, line in enumerate(scene.lines):
             wall, iterations[line.name] = alone_run(scene, k, states[k], args.duration)
             rows[line.name].append(wall / args.duration)
@@ -82,11 +88,12 @@ def main():
     steps = args.duration / scene.solver.dt
     print(f"{'run':<12} {'wall per simulated s':>21} {'Newton its per step':>20} {'us per string-iteration':>24}")
     for name, value in median.items():
-        strings = len(scene.lines) if name == "network" else 1
+        strings = len(scene.lines) if name in networks else 1
         per = 1e6 * value * args.duration / max(iterations[name], 1)
         print(f"{name:<12} {value:21.4f} {iterations[name] / steps / strings:20.2f} {per:24.1f}")
-    print(f"network / its costliest line alone: {median['network'] / max(alone):.2f}")
-    print(f"network / its lines alone, summed:  {median['network'] / sum(alone):.2f}")
+    for name in networks:
+        print(f"{name}: / its costliest line alone {median[name] / max(alone):.2f}, / its lines alone summed "
+              f"{median[name] / sum(alone):.2f}, / its cheapest line alone {median[name] / min(alone):.2f}")
 
 
 if __name__ == "__main__":

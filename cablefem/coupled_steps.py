@@ -19,8 +19,11 @@ substitutions per junction end and a 3 x 3 solve per junction; nothing dense or 
 whole network. Steps that do not converge are halved, as for one line.
 """
 
+import warnings
+
 import numpy as np
 
+from . import policy
 from .errors import ConvergenceError
 from .network import junction_ends
 from .loads import State
@@ -39,6 +42,9 @@ class JunctionSteps:
         self.newton_iterations = 0
         self.halvings = 0
         self.cache = {}  # times[-1] -> forces per integrator, for ``march`` of each member
+        # the compiled loop (``cablefem.junction_march``) where every member marches compiled
+        self.compiled = all(getattr(integ, "marcher", None) is not None for integ in integrators)
+        self.group = None  # its ``junction_march.Group``, built at the first march
         # per integrator: its junction ends as (end, row of the end in the free DOFs, junction)
         self.ends = [[] for _ in integrators]
         for name, members in junctions.items():
@@ -76,16 +82,25 @@ class JunctionSteps:
         return self.cache[key][k]
 
     def march(self, times):
-        """Step every member to each of ``times`` in turn; forces (members, m, 2, 3)."""
+        """Step every member to each of ``times`` in turn; forces (members, m, 2, 3). Compiled
+        (``cablefem.junction_march``) when every member marches compiled; a step the compiled loop
+        stops at goes on here."""
+        times = np.asarray(times, dtype=float)
         forces = np.empty((len(self.integrators), len(times), 2, 3))
-        for i, t in enumerate(times):
+        i = 0
+        while i < len(times):
+            if self.compiled:
+                i += self._march_compiled(times[i:], forces[:, i:])
+                if i == len(times):
+                    break
             try:
-                self.advance(t - self.integrators[0].t)
+                self.advance(times[i] - self.integrators[0].t)
             except ConvergenceError as error:
                 error.forces = forces[0, :i]
                 raise
             for k in range(len(self.integrators)):
                 forces[k, i] = self.reactions(k)
+            i += 1
         return forces
 
     def reactions(self, k):
@@ -99,6 +114,53 @@ class JunctionSteps:
             nodes = State(integ.X[at].T, None, integ.V[at].T, None, integ.A[at].T, integ.t)
             forces[1 - end] -= load.evaluate(nodes, jacobian=False).force[:, i]
         return forces
+
+    def _march_compiled(self, times, forces):
+        """Compiled steps (``junction_march.group_steps``) to ``times`` until done or stopped, the
+        forces into ``forces`` (members, m, 2, 3); the steps taken."""
+        from . import junction_march
+
+        members = self.integrators
+        problems = tuple(integ.marcher.problem(integ, *integ.marcher.ends(integ, times)) for integ in members)
+        if self.group is None:
+            self.group = self._group(problems)
+            if self.group is None:
+                self.compiled = False
+                return 0
+        status, taken = junction_march.group_steps(problems, self.group, times, forces)
+        for integ, prob in zip(members, problems):
+            integ.marcher.finish(integ, prob)
+            if status == junction_march.DONE:  # BDF2's factors of the last step, as the Python steps leave them
+                c0 = float(prob.clock[0]["c0"])
+                integ.c0, integ.t_eval, integ.factors = c0, integ.t, (c0, c0 * c0, 1.0)
+                integ.x_hist, integ.v_hist = prob.x_hist.copy(), prob.v_hist.copy()
+        self.newton_iterations += int(problems[0].counters[policy.ITERATIONS])
+        self.halvings += int(problems[0].counters[policy.REJECTED])
+        return int(taken)
+
+    def _group(self, problems):
+        """The compiled loop's ``junction_march.Group`` of these members, or None (with a warning)
+        where their Problems differ in numba type: one compiled loop serves one type."""
+        import numba
+
+        from . import junction_march
+
+        types = {numba.typeof(prob) for prob in problems}
+        if len(types) > 1:
+            warnings.warn("junction steps: the strings' compiled problems differ in type, so their steps run "
+                          "in the Python loop around the compiled evaluations (several times slower)",
+                          RuntimeWarning, stacklevel=2)
+            return None
+        names = list(self.junctions)
+        ends = np.full((len(self.integrators), 2, 3), -1, dtype=np.int64)
+        for k, member in enumerate(self.ends):
+            order = list(self.integrators[k].fused.free_order)
+            for s, (_, _, name, dof) in enumerate(member):
+                ends[k, s] = (order.index(dof), names.index(name), dof)
+        leaders = np.array([(k, (self.integrators[k].fem.anchor_dof, self.integrators[k].fem.fairlead_dof)[end])
+                            for k, end in (self.junctions[name][0] for name in names)], dtype=np.int64)
+        size = max(integ.fused.n for integ in self.integrators)
+        return junction_march.group(ends, leaders, size, self.max_iterations, self.integrators[0].MAX_GROWTH)
 
     def advance(self, target):
         """Advance by ``target`` [s] in attempts of whole eighths (``march.FRACTIONS``) of it, as a
