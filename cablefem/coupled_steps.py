@@ -50,7 +50,7 @@ class JunctionSteps:
         for name, members in junctions.items():
             for k, end in members:
                 fem = integrators[k].fem
-                dof = (fem.anchor_dof, fem.fairlead_dof)[end]
+                dof = fem.end_dofs[end]
                 self.ends[k].append((end, int(np.searchsorted(fem.free_dofs, dof)), name, dof))
         # per integrator: (end, node load, index in it) of a junction's own point riding on its end
         self.joints = [[] for _ in integrators]
@@ -157,7 +157,7 @@ class JunctionSteps:
             order = list(self.integrators[k].fused.free_order)
             for s, (_, _, name, dof) in enumerate(member):
                 ends[k, s] = (order.index(dof), names.index(name), dof)
-        leaders = np.array([(k, (self.integrators[k].fem.anchor_dof, self.integrators[k].fem.fairlead_dof)[end])
+        leaders = np.array([(k, self.integrators[k].fem.end_dofs[end])
                             for k, end in (self.junctions[name][0] for name in names)], dtype=np.int64)
         size = max(integ.fused.n for integ in self.integrators)
         return junction_march.group(ends, leaders, size, self.max_iterations, self.integrators[0].MAX_GROWTH)
@@ -228,10 +228,10 @@ class JunctionSteps:
         for name, members in self.junctions.items():
             k, end = members[0]
             first = self.integrators[k]
-            at = first.X1[(first.fem.anchor_dof, first.fem.fairlead_dof)[end]].copy()
+            at = first.X1[first.fem.end_dofs[end]].copy()
             for k, end in members[1:]:
                 integ = self.integrators[k]
-                integ.X1[(integ.fem.anchor_dof, integ.fem.fairlead_dof)[end]] = at
+                integ.X1[integ.fem.end_dofs[end]] = at
 
     def _linearise(self, k, integ):
         """(y, Z, S, rows) of member k at its trial X1: its own Newton step y (N_free, 3), the

@@ -161,7 +161,7 @@ class Network:
                 X = _start(system, targets)
             else:
                 s = fem.scalar_basis.doflocs[0] / self.lines[k].unstretched_length
-                moves = [targets.get(e, X[dof]) - X[dof] for e, dof in enumerate((fem.anchor_dof, fem.fairlead_dof))]
+                moves = [targets.get(e, X[dof]) - X[dof] for e, dof in enumerate(fem.end_dofs)]
                 X = X + (1.0 - s)[:, None] * moves[0] + s[:, None] * moves[1]
             X1, its, norm, _, ok = newton(system, X, tolerance, max_iterations)
             if not ok:  # a string far stiffer than its loads (tripod.txt's float) from where it was
@@ -182,7 +182,7 @@ class Network:
         residual, blocks = system.evaluate(system.state(X))
         K = system.matrix(blocks, free_only=False).tocsc()
         ends = [e for kk, e, _ in self.ends if kk == k]
-        dofs = {e: (fem.anchor_dof, fem.fairlead_dof)[e] for e in ends}
+        dofs = {e: fem.end_dofs[e] for e in ends}
         E = np.concatenate([3 * dofs[e] + np.arange(3) for e in ends])
         interior = fem.free_vector_dofs
         K_ii = K[interior][:, interior].tocsc()
@@ -260,7 +260,7 @@ def _start(system, targets):
     X = initial_shape(system)[0].copy()
     fem = system.fem
     for e, position in targets.items():
-        X[(fem.anchor_dof, fem.fairlead_dof)[e]] = position
+        X[fem.end_dofs[e]] = position
     return X
 
 

@@ -75,9 +75,10 @@ class LineFEM:
         self.segment = line.element_segments()  # (nel,)
         self.anchor_dof = 0
         self.fairlead_dof = self.n_vertices - 1
+        self.end_dofs = (self.anchor_dof, self.fairlead_dof)  # by end: 0 anchor, 1 fairlead
         # the ends whose positions are prescribed (``Line.prescribed``); the others are unknowns
         self.prescribed = tuple(line.prescribed)
-        self.fixed_dofs = [dof for dof, given in zip((self.anchor_dof, self.fairlead_dof), self.prescribed) if given]
+        self.fixed_dofs = [dof for dof, given in zip(self.end_dofs, self.prescribed) if given]
         fixed = np.zeros(self.n_dofs, dtype=bool)
         fixed[self.fixed_dofs] = True
         self.free_dofs = np.flatnonzero(~fixed)

@@ -24,7 +24,7 @@ class Marcher:
             self.bed = kernels.Bed(ev.plane, np.zeros((nel, nq)), np.zeros((nel, nq, 3)), np.zeros((nel, nq, 3)),
                                    np.zeros((nel, nq, 3, 3)))
         self.ev = ev
-        ends = np.unique(np.flatnonzero(np.isin(ev.mesh.dofs, (fem.anchor_dof, fem.fairlead_dof)).any(axis=1)))
+        ends = np.unique(np.flatnonzero(np.isin(ev.mesh.dofs, fem.end_dofs).any(axis=1)))
         self.end_elements = ends.astype(np.int64)
         self.points = nel * nq
         self.rule = fem.full  # positions at its quadrature points: the walk's start

@@ -255,7 +255,7 @@ class LoadPath:
         """Newton with the ends at ``ends`` from ``guess`` (or X), else pseudo-transient continuation
         from X (its mass term carries what has little stiffness: points at yield, slack chain);
         (X, iterations, residual, history, ok)."""
-        system, rows = self.system, [self.system.fem.anchor_dof, self.system.fem.fairlead_dof]
+        system, rows = self.system, list(self.system.fem.end_dofs)
         trial = (X if guess is None else guess).copy()
         trial[rows] = ends
         X1, its, norm, hist, ok = newton(system, trial, self.tolerance, self.max_iterations)

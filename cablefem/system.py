@@ -125,7 +125,7 @@ class LineSystem:
     @property
     def fixed_rows(self):
         """Rows of the anchor and fairlead vertices in a state array."""
-        return [self.fem.anchor_dof, self.fem.fairlead_dof]
+        return list(self.fem.end_dofs)
 
     def state(self, X, V=None, A=None, t=0.0):
         """Kinematics at the full quadrature points for state X (N, 3), velocity V and
