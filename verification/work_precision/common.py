@@ -15,8 +15,14 @@ warm (numba's kernels loaded); MoorDyn's: its ``Create``, ``Init`` and ``Step`` 
 peer's Python bookkeeping left out, in MoorDyn's favour), its initial-condition solve skipped
 (TmaxIC 0), coupled every 0.01 s as in the study. Cheap runs are repeated and the least time kept.
 
-``python -m verification.work_precision.common [--cache DIR] [--out DIR]`` (the references come
-from the aligned study's cache); writes ``common.json``.
+With ``--friction`` the same study with the seabed friction of validation/moordyn and the
+work-precision study (``common_friction``): references MoorDyn-C at 1280 segments, dtM 2e-5 s
+(snap; 640 segments, dtM 1e-4 s, coupled every 5e-4 s in slow surge) and cablefem P1 x 640, dt
+6.25e-4 s (snap; P1 x 320, dt 2.5e-3 s in slow surge), all with friction.
+
+``python -m verification.work_precision.common [--friction] [--cache DIR] [--out DIR]`` (the
+references are read from and kept in DIR: the aligned study's cache for the frictionless ones);
+writes ``common.json`` (``common_friction.json``).
 """
 
 import argparse
@@ -34,6 +40,8 @@ from cablefem.study import write_json  # noqa: E402
 from validation.moordyn.run import COUPLING_DT, FLUME_FILE_SEGMENTS, run_moordyn_case  # noqa: E402
 from validation.moordyn_aligned.run import (DURATION, MOORDYN_FILE, MOTIONS, WINDOW, aligned_scene,  # noqa: E402
                                             cablefem, compare, moordyn)
+from verification.work_precision.common_friction import (CABLEFEM_ROWS_FRICTION, REFERENCES_FRICTION,  # noqa: E402
+                                                          cablefem_friction, friction_scene, moordyn_friction)
 from verification.work_precision.runs import run_cablefem_scene  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
@@ -89,21 +97,23 @@ def moordyn_cpu_clock():
             setattr(moordyn, name, function)
 
 
-def moordyn_row(motion, segments, dtM):
-    """MoorDyn, frictionless, at ``segments`` and ``dtM``: (t, tension) dict and its CPU seconds."""
+def moordyn_row(motion, segments, dtM, friction=False):
+    """MoorDyn at ``segments`` and ``dtM``, frictionless unless ``friction`` (the file's, FricDamp
+    scaled with the segments): (t, tension) dict and its CPU seconds."""
     from cablefem.scenes import flume_scene
 
     scene = flume_scene("flat", MOTIONS[motion])
     with moordyn_cpu_clock() as spent:
         run = run_moordyn_case(MOORDYN_FILE, scene, DURATION[motion],
                                {"segments": segments / FLUME_FILE_SEGMENTS, "dtM": dtM, "ic_dtM": None},
-                               options={"TmaxIC": 0.0, "FrictionCoefficient": 0.0})
+                               options={"TmaxIC": 0.0, **({} if friction else {"FrictionCoefficient": 0.0})})
     return {"t": run["t"][1:], "tension": np.linalg.norm(run["forces_on_point"][1:, 0], axis=1)}, spent[0]
 
 
-def cablefem_row(motion, order, elements, dt, tolerance):
-    """cablefem on the aligned scene: (t, tension) dict and its CPU seconds."""
-    scene = aligned_scene(motion, order, elements, dt, tolerance=tolerance)
+def cablefem_row(motion, order, elements, dt, tolerance, friction=False):
+    """cablefem on the aligned scene (with the flume's friction if ``friction``): (t, tension) dict
+    and its CPU seconds."""
+    scene = (friction_scene if friction else aligned_scene)(motion, order, elements, dt, tolerance=tolerance)
     begin = time.process_time()
     run = run_cablefem_scene(scene)
     return run, time.process_time() - begin
@@ -129,29 +139,37 @@ def cheapest(moordyn_rows, cablefem_rows, key):
     return table
 
 
-def run(cache=None, log=print):
-    """Both codes' rows against both references, and the ratio tables, per motion."""
+def references(motion, friction, cache):
+    """Both codes' finest runs (``REFERENCES`` or ``REFERENCES_FRICTION``): settings and series."""
+    ref = (REFERENCES_FRICTION if friction else REFERENCES)[motion]
+    if friction:
+        return ref, {"moordyn": moordyn_friction(motion, *ref["moordyn"], cache=cache),
+                     "cablefem": cablefem_friction(motion, *ref["cablefem"], cache=cache)}
+    return ref, {"moordyn": moordyn(motion, *ref["moordyn"], cache=cache),
+                 "cablefem": cablefem(motion, *ref["cablefem"], cache=cache)}
+
+
+def run(cache=None, log=print, friction=False):
+    """Both codes' rows against both references, and the ratio tables, per motion. The timed rows
+    run first, the references (read from ``cache`` when there) after them."""
     from verification.work_precision.run import warm_up
 
     warm_up()
-    results = {"clock": "process CPU seconds", "references": {}}
+    results = {"clock": "process CPU seconds", "friction": friction, "references": {}}
     for motion in ("slow", "snap"):
-        ref = REFERENCES[motion]
-        refs = {"moordyn": moordyn(motion, *ref["moordyn"], cache=cache),
-                "cablefem": cablefem(motion, *ref["cablefem"], cache=cache)}
+        series = {"moordyn": [], "cablefem": []}
+        for segments, dtM in MOORDYN_ROWS[motion]:
+            found, cpu = least_cpu(lambda: moordyn_row(motion, segments, dtM, friction))
+            series["moordyn"].append((f"{segments} segments, dtM {dtM:g}", cpu, found))
+        for order, elements, dt, tolerance in (CABLEFEM_ROWS_FRICTION if friction else CABLEFEM_ROWS)[motion]:
+            found, cpu = least_cpu(lambda: cablefem_row(motion, order, elements, dt, tolerance, friction))
+            series["cablefem"].append((f"P{order} x {elements}, dt {dt:g}", cpu, found))
+        ref, refs = references(motion, friction, cache)
         t_from = WINDOW[motion]
         results["references"][motion] = {"moordyn": ref["moordyn"], "cablefem": ref["cablefem"],
                                          "cablefem_vs_moordyn": compare(refs["cablefem"], refs["moordyn"], t_from)}
-        rows = {"moordyn": [], "cablefem": []}
-        for segments, dtM in MOORDYN_ROWS[motion]:
-            series, cpu = least_cpu(lambda: moordyn_row(motion, segments, dtM))
-            rows["moordyn"].append({"label": f"{segments} segments, dtM {dtM:g}", "cpu_s": cpu,
-                                    "error": {k: compare(series, r, t_from) for k, r in refs.items()}})
-        for settings in CABLEFEM_ROWS[motion]:
-            series, cpu = least_cpu(lambda: cablefem_row(motion, *settings))
-            order, elements, dt, tolerance = settings
-            rows["cablefem"].append({"label": f"P{order} x {elements}, dt {dt:g}", "cpu_s": cpu,
-                                     "error": {k: compare(series, r, t_from) for k, r in refs.items()}})
+        rows = {code: [{"label": label, "cpu_s": cpu, "error": {k: compare(found, r, t_from) for k, r in refs.items()}}
+                       for label, cpu, found in series[code]] for code in series}
         for code in rows:
             for row in rows[code]:
                 e = row["error"]
@@ -175,9 +193,10 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--cache", type=Path, default=None, help="the aligned study's run cache (references)")
     parser.add_argument("--out", type=Path, default=HERE)
+    parser.add_argument("--friction", action="store_true", help="with the flume's seabed friction")
     args = parser.parse_args(argv)
-    results = run(cache=args.cache)
-    write_json(args.out / "common.json", results)
+    results = run(cache=args.cache, friction=args.friction)
+    write_json(args.out / ("common_friction.json" if args.friction else "common.json"), results)
 
 
 if __name__ == "__main__":
