@@ -31,7 +31,8 @@ import scipy.sparse.linalg as spla
 from .errors import ConvergenceError
 from .loads.points import PointLoads
 from .network import coupling, rotation, rotation_rates
-from .statics import axial_continuation, newton, solve_static
+from .continuation import axial_continuation
+from .statics import newton, solve_static
 
 
 def _cross(a):
