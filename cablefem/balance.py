@@ -20,7 +20,7 @@ import numpy as np
 
 
 def stored_energy(system, X, V=None, mass=None):
-    """Kinetic [J] (with ``mass``, the sparse consistent mass of ``dynamics.mass_matrix``), strain and
+    """Kinetic [J] (with ``mass``, the sparse consistent mass of ``forms.mass_matrix``), strain and
     gravity energy of ``system`` at X (N, 3), V (N, 3): a dict of the three."""
     state = system.state(X)
     strain = float(np.sum(system.tension.energy(state.reduced) * system.fem.reduced.dx))

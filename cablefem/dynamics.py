@@ -20,12 +20,14 @@ fails at ``min_dt`` raises a ``ConvergenceError`` with its residual. ``INTEGRATO
 registry; ``integrator_options`` turns a scene's [solver] into their arguments.
 """
 
+from functools import cached_property
+
 import numpy as np
-import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from . import policy, python_ops
 from .errors import ConvergenceError
+from .forms import mass_matrix
 
 #: the policy on Python ops, for every integrator
 PYTHON = policy.bind(python_ops)
@@ -93,9 +95,7 @@ class Integrator:
         self.min_dt = float(min_dt) if min_dt else self.dt / 1024.0
         self.tolerance = tolerance
         self.max_iterations = max_iterations
-        self.M = mass_matrix(system, lumped)
-        free = fem.free_vector_dofs
-        self.M_free = self.M[free][:, free].tocsr()
+        self.lumped = lumped  # the mass M and its free block M_free are assembled on first use
         self.length = system.line.unstretched_length
         self.scale = float(np.linalg.norm(system.weight_vector()[fem.free_dofs])) or 1.0
         self.counters = np.zeros(len(policy.COUNTERS), dtype=np.int64)
@@ -109,6 +109,8 @@ class Integrator:
             from .fused import FusedEvaluator
 
             self.fused = FusedEvaluator.for_system(system, system.props["mass"])
+        else:  # the numpy path needs the mass (and a lumped one checks its order) at once
+            self.M_free
         # a compiled tangent costs about a residual and its banded LU a few microseconds, so full
         # Newton (fewer iterations) wins; on the numpy path kept factors save more than they cost
         if newton not in ("auto", "full", "modified"):
@@ -127,6 +129,17 @@ class Integrator:
 
     # ------------------------------------------------------------------ counters
     steps, newton_iterations, nfev, njev, nlu, rejected, corrections = map(_counter, range(len(policy.COUNTERS)))
+
+    @cached_property
+    def M(self):
+        """The mass matrix (N 3, N 3), CSR (``forms.mass_matrix``); the compiled steps carry the
+        mass in their kernel, so there it is assembled only if M A is needed at a nonzero A."""
+        return mass_matrix(self.system, self.lumped)
+
+    @cached_property
+    def M_free(self):
+        """The mass matrix's block of the free DOFs, CSR."""
+        return self.M[self.fem.free_vector_dofs][:, self.fem.free_vector_dofs].tocsr()
 
     @property
     def settings(self):
@@ -171,7 +184,9 @@ class Integrator:
         return ends
 
     def inertia(self, A):
-        """Rows (N, 3) of M A."""
+        """Rows (N, 3) of M A (zeros, without assembling M, at A = 0: a start at rest)."""
+        if not A.any():
+            return np.zeros(A.shape)
         return (self.M @ A.ravel()).reshape(A.shape)
 
     def initial_acceleration(self):
@@ -344,21 +359,6 @@ class Integrator:
     def statistics(self):
         """Counters as a dict, for summary.json."""
         return {"integrator": self.name, **{name: int(value) for name, value in zip(policy.COUNTERS, self.counters)}}
-
-
-def mass_matrix(system, lumped=False):
-    """The line's mass matrix (N 3, N 3), CSR: consistent, assembled by scikit-fem's ``forms.mass``,
-    or lumped (row sums; order 1 only)."""
-    from . import forms
-
-    fem = system.fem
-    m = system.props["mass"][:, None] * np.ones_like(fem.full.dx)
-    M = forms.mass.assemble(fem.basis, m=m).tocsr()
-    if lumped:
-        if fem.order != 1:
-            raise ValueError("a lumped mass needs order 1 elements")
-        M = sp.diags(np.asarray(M.sum(axis=1)).ravel()).tocsr()
-    return M
 
 
 class _Registry(dict):

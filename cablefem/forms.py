@@ -14,6 +14,7 @@ that both agree.
 """
 
 import numpy as np
+import scipy.sparse as sp
 from skfem import BilinearForm, LinearForm
 from skfem.helpers import dot
 
@@ -41,3 +42,36 @@ def tangent(u, v, w):
 def mass(u, v, w):
     """Consistent mass int m u . v ds with w.m [kg/m] of shape (nel, nq)."""
     return w.m * dot(u, v)
+
+
+@BilinearForm
+def scalar_mass(u, v, w):
+    """int m u v ds on a scalar basis, w.m [kg/m] of shape (nel, nq): ``mass`` between like
+    components (its u . v is u_c v_c there, zero between different components)."""
+    return w.m * (u * v)
+
+
+def mass_matrix(system, lumped=False):
+    """The line's mass matrix (N 3, N 3), CSR: consistent (``mass``, assembled as ``scalar_mass``
+    on the scalar basis once for the three components: the same numbers without the vector
+    basis and its zero blocks), or lumped (row sums; order 1 only)."""
+    fem = system.fem
+    m = system.props["mass"][:, None] * np.ones_like(fem.full.dx)
+    M = _per_component(scalar_mass.assemble(fem.scalar_basis, m=m).tocsr())
+    if lumped:
+        if fem.order != 1:
+            raise ValueError("a lumped mass needs order 1 elements")
+        M = sp.diags(np.asarray(M.sum(axis=1)).ravel()).tocsr()
+    return M
+
+
+def _per_component(S):
+    """kron(S, I_3) in CSR for a canonical CSR S (n, n): row 3 i + c holds row i of S at the
+    columns 3 j + c (scikit-fem's vector DOF order); scipy's kron took ~0.7 ms at 15 nodes."""
+    n, counts = S.shape[0], np.diff(S.indptr)
+    row_counts = np.repeat(counts, 3)
+    indptr = np.zeros(3 * n + 1, dtype=S.indptr.dtype)
+    np.cumsum(row_counts, out=indptr[1:])
+    source = np.repeat(np.repeat(S.indptr[:-1], 3) - indptr[:-1], row_counts) + np.arange(indptr[-1])
+    component = np.repeat(np.tile(np.arange(3), n), row_counts)
+    return sp.csr_matrix((S.data[source], 3 * S.indices[source] + component, indptr), shape=(3 * n, 3 * n))
