@@ -92,6 +92,16 @@ def test_mass_matrix_per_component_equals_the_vector_forms_bit_for_bit(chain, or
     assert M.toarray().tobytes() == reference.toarray().tobytes()
 
 
+def test_line_rule_kept_per_process_is_scikit_fems_bit_for_bit():
+    from skfem.quadrature import get_quadrature_line
+
+    from cablefem.fem import _scikit_fem_line_rule
+
+    for intorder in range(30):
+        (x, w), (x_ref, w_ref) = _scikit_fem_line_rule(intorder), get_quadrature_line(intorder)
+        assert x.tobytes() == x_ref.tobytes() and w.tobytes() == w_ref.tobytes()
+
+
 def test_internal_force_rotates_with_a_rigid_motion(chain, rng):
     system = LineSystem(make_line(chain, 3, elements=5), Horizontal(1e4), Contact(), Environment())
     fem = system.fem
