@@ -100,3 +100,27 @@ def test_error_is_rms_over_the_window_relative_to_the_mean():
     assert study.error_against(reference, reference, 4.0) == 0.0
     assert study.error_against(shifted, reference, 4.0) == pytest.approx(
         0.02 / np.mean(2.0 + np.sin(t[::10][t[::10] >= 4.0])), rel=1e-12)
+
+
+def test_common_study_row_runs_its_integrator_and_rho_inf():
+    # verification/work_precision/common: a row's integrator and rho_inf reach the run. The
+    # generalised-alpha row equals, to the bit, a run of the aligned scene with [solver]
+    # integrator "generalized-alpha" and rho_inf 0.9, and differs from the BDF2 row and from the
+    # row at rho_inf 0.8 (deterministic runs: any difference is the setting, not noise).
+    from dataclasses import replace
+
+    from validation.moordyn_aligned.run import aligned_scene
+    from verification.work_precision.common import Row, cablefem_row
+    from verification.work_precision.runs import run_cablefem_scene
+
+    bdf2, alpha, other = Row(1, 14, 0.17), Row(1, 14, 0.17, 1e-4, "generalized-alpha", 0.9), \
+        Row(1, 14, 0.17, 1e-4, "generalized-alpha", 0.8)
+    assert (bdf2.label(), alpha.label()) == ("P1 x 14, dt 0.17", "P1 x 14, gen-a 0.9, dt 0.17")
+    scene = aligned_scene("slow", 1, 14, 0.17, tolerance=1e-4)
+    scene.solver = replace(scene.solver, integrator="generalized-alpha", rho_inf=0.9)
+    direct = run_cablefem_scene(scene)
+    runs = {row: cablefem_row("slow", row)[0]["tension"] for row in (bdf2, alpha, other)}
+    assert np.array_equal(runs[alpha], direct["tension"])
+    mean = np.mean(direct["tension"])
+    assert np.max(np.abs(runs[bdf2] - runs[alpha])) > 1e-4 * mean
+    assert np.max(np.abs(runs[other] - runs[alpha])) > 1e-6 * mean

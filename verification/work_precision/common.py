@@ -9,6 +9,9 @@ cablefem P1 x 640 (snap; P1 x 320 in slow surge), which differ by 1.1 % (snap) a
 surge) RMS. For each MoorDyn error level (its runs at the work-precision study's Pareto settings)
 the cheapest cablefem run at least as accurate against the same reference gives the time ratio.
 
+cablefem's rows (``Row``) are BDF2 unless a row names generalised-alpha and its rho_inf (labels
+"P1 x 113, gen-a 0.9, dt 0.04").
+
 Times are CPU seconds of the process (``time.process_time``), not wall time: the runs were made on
 a shared machine whose load made wall times vary by 3-10x. cablefem's: statics, set-up and steps,
 warm (numba's kernels loaded); MoorDyn's: its ``Create``, ``Init`` and ``Step`` calls only (the
@@ -29,7 +32,9 @@ import argparse
 import contextlib
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -48,7 +53,25 @@ HERE = Path(__file__).resolve().parent
 #: MoorDyn's settings: the work-precision study's Pareto points (its results.json)
 MOORDYN_ROWS = {"snap": [(20, 5e-3), (40, 2.5e-3), (80, 2.5e-3), (160, 2e-3), (320, 5e-4)],
                 "slow": [(20, 5e-3), (40, 2.5e-3), (80, 2.5e-3), (160, 2e-3), (160, 1.25e-3), (320, 6.25e-4)]}
-#: cablefem's: (order, elements, dt, Newton tolerance), the study's Pareto rows and finer ones
+
+
+class Row(NamedTuple):
+    """One cablefem row: element order and count, step dt [s], Newton's relative tolerance, the
+    integrator (``cablefem.dynamics.INTEGRATORS``) and generalised-alpha's rho_inf (unused by BDF2)."""
+
+    order: int
+    elements: int
+    dt: float
+    tolerance: float = 1e-4
+    integrator: str = "bdf2"
+    rho_inf: float = 0.5
+
+    def label(self):
+        kind = f"gen-a {self.rho_inf:g}, " if self.integrator == "generalized-alpha" else ""
+        return f"P{self.order} x {self.elements}, {kind}dt {self.dt:g}"
+
+
+#: cablefem's rows (``Row``'s fields; the first four for BDF2): the study's Pareto rows and finer ones
 CABLEFEM_ROWS = {
     "snap": [(1, 14, 0.16, 1e-4), (2, 7, 0.16, 1e-4), (2, 10, 0.16, 1e-4), (1, 40, 0.16, 1e-4), (1, 80, 0.08, 1e-4),
              (2, 40, 0.08, 1e-4), (1, 160, 0.04, 1e-4), (1, 160, 0.02, 1e-4), (1, 226, 0.04, 1e-4),
@@ -59,7 +82,11 @@ CABLEFEM_ROWS = {
              (1, 160, 0.02, 1e-4), (2, 80, 0.02, 1e-4), (1, 320, 0.01, 1e-4), (2, 80, 0.01, 1e-4),
              # without friction BDF2's time error decides below 0.3 %: finer steps on coarse meshes
              (1, 40, 0.01, 1e-4), (2, 20, 0.01, 1e-4), (2, 40, 0.01, 1e-4), (1, 80, 0.01, 1e-4),
-             (2, 40, 0.005, 1e-4), (1, 80, 0.005, 1e-4), (2, 40, 0.0025, 1e-4), (2, 80, 0.0025, 1e-4)]}
+             (2, 40, 0.005, 1e-4), (1, 80, 0.005, 1e-4), (2, 40, 0.0025, 1e-4), (2, 80, 0.0025, 1e-4),
+             (2, 28, 0.02, 1e-4), (1, 113, 0.01, 1e-4),
+             # generalised-alpha has BDF2's error at twice the step here (rho_inf 0.8-0.95 alike; 1.0
+             # keeps undamped oscillations that grow on P2 x 80) but steps in Python, ~10x BDF2's CPU
+             (1, 113, 0.04, 1e-4, "generalized-alpha", 0.9), (2, 80, 0.02, 1e-4, "generalized-alpha", 0.9)]}
 REFERENCES = {"snap": {"moordyn": (1280, 2e-5, COUPLING_DT), "cablefem": (1, 640, 0.000625, 1e-8)},
               "slow": {"moordyn": (640, 1e-4, 5e-4), "cablefem": (1, 320, 0.0025, 1e-8)}}
 REPEATS = ((0.2, 5), (1.0, 3), (3.0, 2))
@@ -110,10 +137,12 @@ def moordyn_row(motion, segments, dtM, friction=False):
     return {"t": run["t"][1:], "tension": np.linalg.norm(run["forces_on_point"][1:, 0], axis=1)}, spent[0]
 
 
-def cablefem_row(motion, order, elements, dt, tolerance, friction=False):
-    """cablefem on the aligned scene (with the flume's friction if ``friction``): (t, tension) dict
-    and its CPU seconds."""
-    scene = (friction_scene if friction else aligned_scene)(motion, order, elements, dt, tolerance=tolerance)
+def cablefem_row(motion, row, friction=False):
+    """cablefem on the aligned scene (with the flume's friction if ``friction``) with the settings of
+    ``row`` (a ``Row``): (t, tension) dict and its CPU seconds."""
+    scene = (friction_scene if friction else aligned_scene)(motion, row.order, row.elements, row.dt,
+                                                            tolerance=row.tolerance)
+    scene.solver = replace(scene.solver, integrator=row.integrator, rho_inf=row.rho_inf)
     begin = time.process_time()
     run = run_cablefem_scene(scene)
     return run, time.process_time() - begin
@@ -161,9 +190,9 @@ def run(cache=None, log=print, friction=False):
         for segments, dtM in MOORDYN_ROWS[motion]:
             found, cpu = least_cpu(lambda: moordyn_row(motion, segments, dtM, friction))
             series["moordyn"].append((f"{segments} segments, dtM {dtM:g}", cpu, found))
-        for order, elements, dt, tolerance in (CABLEFEM_ROWS_FRICTION if friction else CABLEFEM_ROWS)[motion]:
-            found, cpu = least_cpu(lambda: cablefem_row(motion, order, elements, dt, tolerance, friction))
-            series["cablefem"].append((f"P{order} x {elements}, dt {dt:g}", cpu, found))
+        for row in (Row(*r) for r in (CABLEFEM_ROWS_FRICTION if friction else CABLEFEM_ROWS)[motion]):
+            found, cpu = least_cpu(lambda: cablefem_row(motion, row, friction))
+            series["cablefem"].append((row.label(), cpu, found))
         ref, refs = references(motion, friction, cache)
         t_from = WINDOW[motion]
         results["references"][motion] = {"moordyn": ref["moordyn"], "cablefem": ref["cablefem"],

@@ -67,8 +67,9 @@ def cablefem_friction(motion, order, elements, dt, tolerance=1e-8, cache=None):
 #: elements, dt, Newton tolerance); the frictionless study's settings
 REFERENCES_FRICTION = {"snap": {"moordyn": (1280, 2e-5, COUPLING_DT), "cablefem": (1, 640, 0.000625, 1e-8)},
                        "slow": {"moordyn": (640, 1e-4, FINE_COUPLING), "cablefem": (1, 320, 0.0025, 1e-8)}}
-#: cablefem's rows: (order, elements, dt, Newton tolerance): the work-precision study's Pareto rows
-#: (which have friction), the frictionless common study's and finer ones
+#: cablefem's rows (``common.Row``'s fields: order, elements, dt, Newton tolerance[, integrator,
+#: rho_inf]): the work-precision study's Pareto rows (which have friction), the frictionless common
+#: study's and finer ones
 CABLEFEM_ROWS_FRICTION = {
     "snap": [(1, 14, 0.16, 1e-4), (2, 7, 0.16, 1e-4), (2, 10, 0.16, 1e-4), (3, 7, 0.16, 1e-4), (3, 14, 0.16, 1e-4),
              (1, 40, 0.16, 1e-4), (1, 80, 0.08, 1e-4), (2, 40, 0.08, 1e-4), (1, 160, 0.08, 1e-4),
@@ -80,4 +81,6 @@ CABLEFEM_ROWS_FRICTION = {
              (2, 28, 0.085, 1e-4), (2, 57, 0.04, 1e-4), (1, 80, 0.04, 1e-4), (1, 113, 0.04, 1e-4),
              (2, 40, 0.04, 1e-4), (2, 80, 0.04, 1e-4), (1, 160, 0.04, 1e-4), (1, 160, 0.02, 1e-4),
              (2, 57, 0.02, 1e-4), (2, 80, 0.02, 1e-4), (1, 320, 0.01, 1e-4), (2, 80, 0.01, 1e-4),
-             (2, 160, 0.01, 1e-4), (2, 80, 0.005, 1e-4)]}
+             (2, 160, 0.01, 1e-4), (2, 80, 0.005, 1e-4),
+             # with friction the mesh decides: P1 x 90-100 at dt 0.06 for MoorDyn's 160 segments
+             (1, 90, 0.06, 1e-4), (1, 100, 0.06, 1e-4), (1, 113, 0.085, 1e-4, "generalized-alpha", 0.9)]}
