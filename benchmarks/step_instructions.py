@@ -1,0 +1,109 @@
+"""Instructions of the compiled steps, counted by valgrind's callgrind (docs/architecture.md, "What
+the catalog costs").
+
+Times of a run vary by ±10 % between rounds on a shared VM; instruction counts do not. This runs
+one flume case (``cablefem.scenes.flume_scene``, as ``benchmarks.flume_cost`` does) in a child
+process under ``valgrind --tool=callgrind`` and counts only the instructions inside the calls of
+the compiled steps (``cablefem.marcher.STEPS``), switched on and off around each call by
+callgrind's client requests (a two-function C library built here with gcc and valgrind's
+headers). The kernels are compiled for a generic x86-64 (``NUMBA_CPU_NAME=generic``): numba keys
+its cache on the CPU, and valgrind's emulated CPU differs from the host's, so without it the
+child would compile every kernel under valgrind (hours). The first call compiles that generic
+variant natively (~1-2 min), then the child runs (~1 min). To compare commits, run it in a
+worktree of each (``PYTHONPATH=<worktree> python -m benchmarks.step_instructions``).
+
+    python -m benchmarks.step_instructions [--case steep dynamic 1 40 0.01] [--duration 1.0]
+"""
+
+import argparse
+import ctypes
+import os
+import re
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+TOGGLE_C = """#include <valgrind/callgrind.h>
+void cg_start(void) { CALLGRIND_START_INSTRUMENTATION; }
+void cg_toggle(void) { CALLGRIND_TOGGLE_COLLECT; }
+"""
+
+
+def child(library, case, duration):
+    """Inside valgrind: warm up, then count the steps' instructions of one run of ``case``."""
+    import cablefem.marcher as marcher
+    from cablefem.run import run_scene
+    from cablefem.scenes import flume_scene
+
+    lib, inner = ctypes.CDLL(library), marcher.STEPS
+    seabed, motion, order, elements, dt = case
+
+    def counted(*args):
+        lib.cg_toggle()
+        try:
+            return inner(*args)
+        finally:
+            lib.cg_toggle()
+
+    def run(seconds):
+        scene = flume_scene(seabed, motion, elements=int(elements), order=int(order), duration=seconds, dt=float(dt))
+        with tempfile.TemporaryDirectory(prefix="cablefem-instructions-") as out:
+            run_scene(scene, out, progress=False)
+
+    run(0.05)  # kernels loaded, every path taken once
+    marcher.STEPS = counted
+    lib.cg_start()
+    run(duration)
+
+
+def count(case, duration):
+    """Compile the generic kernels, then run ``child`` under callgrind: instructions (int)."""
+    env = dict(os.environ, NUMBA_CPU_NAME="generic")
+    with tempfile.TemporaryDirectory(prefix="cablefem-callgrind-") as work:
+        library = Path(work) / "libtoggle.so"
+        (Path(work) / "toggle.c").write_text(TOGGLE_C)
+        subprocess.run(["gcc", "-O1", "-shared", "-fPIC", "-o", str(library), str(Path(work) / "toggle.c")], check=True)
+        me = [sys.executable, "-m", "benchmarks.step_instructions", "--child", str(library), "--duration",
+              str(duration), "--case", *case]
+        subprocess.run(me[:3] + ["--warm"] + me[3:], env=env, check=True)
+        done = subprocess.run(["valgrind", "--tool=callgrind", "--instr-atstart=no", "--collect-atstart=no",
+                               f"--callgrind-out-file={work}/out"] + me, env=env, capture_output=True, text=True)
+        found = re.search(r"Collected : (\d+)", done.stderr)
+        if done.returncode != 0 or not found:
+            raise SystemExit(f"callgrind failed ({done.returncode}): {done.stderr[-2000:]}")
+        return int(found.group(1))
+
+
+def child_warm(case):
+    """Natively, with the generic CPU: one short run compiles (or loads) the kernels."""
+    from cablefem.run import run_scene
+    from cablefem.scenes import flume_scene
+
+    seabed, motion, order, elements, dt = case
+    scene = flume_scene(seabed, motion, elements=int(elements), order=int(order), duration=0.05, dt=float(dt))
+    with tempfile.TemporaryDirectory(prefix="cablefem-instructions-") as out:
+        run_scene(scene, out, progress=False)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--case", nargs=5, default=["steep", "dynamic", "1", "40", "0.01"],
+                        metavar=("SEABED", "MOTION", "ORDER", "ELEMENTS", "DT"))
+    parser.add_argument("--duration", type=float, default=1.0, help="simulated seconds counted")
+    parser.add_argument("--child", help=argparse.SUPPRESS)
+    parser.add_argument("--warm", action="store_true", help=argparse.SUPPRESS)
+    args = parser.parse_args(argv)
+    if args.warm:  # natively: compile (or load) the generic kernels
+        return child_warm(args.case)
+    if args.child:
+        return child(args.child, args.case, args.duration)
+    import cablefem
+
+    instructions = count(args.case, args.duration)
+    print(f"{' '.join(args.case)}, {args.duration:g} s: {instructions:,} instructions in the compiled steps "
+          f"({Path(cablefem.__file__).parent})")
+
+
+if __name__ == "__main__":
+    main()
