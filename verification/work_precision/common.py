@@ -83,7 +83,7 @@ CABLEFEM_ROWS = {
              # without friction BDF2's time error decides below 0.3 %: finer steps on coarse meshes
              (1, 40, 0.01, 1e-4), (2, 20, 0.01, 1e-4), (2, 40, 0.01, 1e-4), (1, 80, 0.01, 1e-4),
              (2, 40, 0.005, 1e-4), (1, 80, 0.005, 1e-4), (2, 40, 0.0025, 1e-4), (2, 80, 0.0025, 1e-4),
-             (2, 28, 0.02, 1e-4), (1, 113, 0.01, 1e-4),
+             (2, 28, 0.02, 1e-4), (1, 113, 0.01, 1e-4), (2, 80, 0.005, 1e-4),
              # generalised-alpha has BDF2's error at twice the step here (rho_inf 0.8-0.95 alike; 1.0
              # keeps undamped oscillations that grow on P2 x 80) but steps in Python, ~10x BDF2's CPU
              (1, 113, 0.04, 1e-4, "generalized-alpha", 0.9), (2, 80, 0.02, 1e-4, "generalized-alpha", 0.9)]}
