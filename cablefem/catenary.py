@@ -92,8 +92,7 @@ class CatenarySolution:
     @property
     def _hanging_start(self):
         """(s, x, z, V) where the hanging part starts: touchdown point, or the anchor when suspended."""
-        H, w = self.fairlead_horizontal, self.weight
-        V0 = self.fairlead_vertical - w * (self.length - self.lying_length)
+        V0 = self.fairlead_vertical - self.weight * (self.length - self.lying_length)
         if self.lying is None:
             return 0.0, 0.0, 0.0, V0
         d = float(self.lying.distance(self.lying.length, self._setting.gradient, 1.0 / self.EA))
