@@ -25,6 +25,7 @@ from functools import cached_property, lru_cache
 import numpy as np
 import scipy.sparse as sp
 from skfem import Basis, ElementLineP1, ElementLineP2, ElementLinePp, ElementVector, MeshLine
+from skfem.quadrature import get_quadrature_line
 
 
 def scalar_element(order):
@@ -38,31 +39,29 @@ def scalar_element(order):
         return ElementLinePp(order)
 
 
+def _kept_per_process(rule):
+    """``rule(n)`` -> arrays, computed once per ``n`` in a process and handed out as copies (numpy's
+    Gauss-Legendre solves an eigenproblem, ~0.2 ms a call, twice a line's set-up)."""
+    @lru_cache(maxsize=None)
+    def table(n):
+        arrays = rule(n)
+        for array in arrays:
+            array.flags.writeable = False
+        return arrays
+
+    return lambda n: tuple(array.copy() for array in table(n))
+
+
+#: numpy's Gauss-Legendre points and weights on [-1, 1] (n,), (n,); scikit-fem's line rule of an
+#: order (what its Basis(intorder=...) takes), each kept per process
+_legendre = _kept_per_process(np.polynomial.legendre.leggauss)
+_scikit_fem_line_rule = _kept_per_process(get_quadrature_line)
+
+
 def gauss_line(points):
     """Gauss-Legendre rule of ``points`` points on the reference element [0, 1]: (X (1, n), W (n,))."""
     x, w = _legendre(points)
     return 0.5 * (x + 1.0)[None, :], 0.5 * w
-
-
-def _scikit_fem_line_rule(intorder):
-    """scikit-fem's own line rule of order ``intorder`` (``get_quadrature_line``: the same numbers
-    as its Basis(intorder=...) takes), its Gauss-Legendre table read from ``_legendre``."""
-    x, w = _legendre(int(np.ceil((max(intorder, 2) + 1.0) / 2.0)))
-    return np.array([0.5 * x + 0.5]), w / 2.0
-
-
-@lru_cache(maxsize=None)
-def _legendre_table(points):
-    x, w = np.polynomial.legendre.leggauss(points)
-    x.flags.writeable = w.flags.writeable = False
-    return x, w
-
-
-def _legendre(points):
-    """numpy's Gauss-Legendre points and weights on [-1, 1] (n,), (n,): a table kept per process
-    (numpy solves an eigenproblem for them, ~0.2 ms, twice a line's set-up)."""
-    x, w = _legendre_table(points)
-    return x.copy(), w.copy()
 
 
 class LineFEM:

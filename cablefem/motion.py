@@ -80,9 +80,3 @@ def fairlead_motion(motion, t):
     d, v, a = S * d, S * v + dS * d, S * a + 2 * dS * v + ddS * d
     return (d[0], v[0], a[0]) if np.ndim(t) == 0 else (d, v, a)
 
-
-def fairlead_displacement(motion, t):
-    """Ramped displacement (n, 3) [m] at the times t (n,) [s]: ``fairlead_motion``'s first part
-    (the same numbers), without the derivatives a path's ``positions`` does not need."""
-    times = np.array(t, dtype=float, ndmin=1)
-    return _ramp(times, motion.ramp)[0][:, None] * _raw(motion, times)[0]

@@ -22,7 +22,7 @@ from .io.checks import check_names, check_run
 from .io.output import (RowsFile, deferred_signals, failure as write_failure, inside, prepare_folder,
                         remove_partials, write_atomic)
 from .io.vtk import TimeSeriesWriter, polyline_mesh
-from .motion import fairlead_displacement, fairlead_motion
+from .motion import fairlead_motion
 from .coupled_steps import junction_steps
 from .network import check_no_coupling, coupling, dynamic_lines, line_paths
 from .network_output import NetworkRows, body_reference, frame_marks
@@ -52,7 +52,7 @@ class FairleadPath:
         return self.fairlead + d, v, a
 
     def positions(self, times):
-        return self.fairlead + fairlead_displacement(self.motion, times)
+        return self.fairlead + fairlead_motion(self.motion, times)[0]
 
 
 def boundary_path(scene, line):
