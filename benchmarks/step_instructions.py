@@ -30,14 +30,23 @@ void cg_toggle(void) { CALLGRIND_TOGGLE_COLLECT; }
 """
 
 
-def child(library, case, duration):
-    """Inside valgrind: warm up, then count the steps' instructions of one run of ``case``."""
-    import cablefem.marcher as marcher
+def run_case(case, seconds):
+    """One run of the flume ``case`` (seabed, motion, order, elements, dt) for ``seconds``, as
+    ``cablefem run`` does it (frames in a temporary folder)."""
     from cablefem.run import run_scene
     from cablefem.scenes import flume_scene
 
-    lib, inner = ctypes.CDLL(library), marcher.STEPS
     seabed, motion, order, elements, dt = case
+    scene = flume_scene(seabed, motion, elements=int(elements), order=int(order), duration=seconds, dt=float(dt))
+    with tempfile.TemporaryDirectory(prefix="cablefem-instructions-") as out:
+        run_scene(scene, out, progress=False)
+
+
+def child(library, case, duration):
+    """Inside valgrind: warm up, then count the steps' instructions of one run of ``case``."""
+    import cablefem.marcher as marcher
+
+    lib, inner = ctypes.CDLL(library), marcher.STEPS
 
     def counted(*args):
         lib.cg_toggle()
@@ -46,15 +55,10 @@ def child(library, case, duration):
         finally:
             lib.cg_toggle()
 
-    def run(seconds):
-        scene = flume_scene(seabed, motion, elements=int(elements), order=int(order), duration=seconds, dt=float(dt))
-        with tempfile.TemporaryDirectory(prefix="cablefem-instructions-") as out:
-            run_scene(scene, out, progress=False)
-
-    run(0.05)  # kernels loaded, every path taken once
+    run_case(case, 0.05)  # kernels loaded, every path taken once
     marcher.STEPS = counted
     lib.cg_start()
-    run(duration)
+    run_case(case, duration)
 
 
 def count(case, duration):
@@ -64,26 +68,16 @@ def count(case, duration):
         library = Path(work) / "libtoggle.so"
         (Path(work) / "toggle.c").write_text(TOGGLE_C)
         subprocess.run(["gcc", "-O1", "-shared", "-fPIC", "-o", str(library), str(Path(work) / "toggle.c")], check=True)
-        me = [sys.executable, "-m", "benchmarks.step_instructions", "--child", str(library), "--duration",
-              str(duration), "--case", *case]
-        subprocess.run(me[:3] + ["--warm"] + me[3:], env=env, check=True)
+        me, the_case = [sys.executable, "-m", "benchmarks.step_instructions"], ["--case", *case]
+        subprocess.run(me + ["--warm"] + the_case, env=env, check=True)
         done = subprocess.run(["valgrind", "--tool=callgrind", "--instr-atstart=no", "--collect-atstart=no",
-                               f"--callgrind-out-file={work}/out"] + me, env=env, capture_output=True, text=True)
+                               f"--callgrind-out-file={work}/out"] + me
+                              + ["--child", str(library), "--duration", str(duration)] + the_case,
+                              env=env, capture_output=True, text=True)
         found = re.search(r"Collected : (\d+)", done.stderr)
         if done.returncode != 0 or not found:
             raise SystemExit(f"callgrind failed ({done.returncode}): {done.stderr[-2000:]}")
         return int(found.group(1))
-
-
-def child_warm(case):
-    """Natively, with the generic CPU: one short run compiles (or loads) the kernels."""
-    from cablefem.run import run_scene
-    from cablefem.scenes import flume_scene
-
-    seabed, motion, order, elements, dt = case
-    scene = flume_scene(seabed, motion, elements=int(elements), order=int(order), duration=0.05, dt=float(dt))
-    with tempfile.TemporaryDirectory(prefix="cablefem-instructions-") as out:
-        run_scene(scene, out, progress=False)
 
 
 def main(argv=None):
@@ -94,8 +88,8 @@ def main(argv=None):
     parser.add_argument("--child", help=argparse.SUPPRESS)
     parser.add_argument("--warm", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
-    if args.warm:  # natively: compile (or load) the generic kernels
-        return child_warm(args.case)
+    if args.warm:  # natively, with the generic CPU: one short run compiles (or loads) the kernels
+        return run_case(args.case, 0.05)
     if args.child:
         return child(args.child, args.case, args.duration)
     import cablefem
