@@ -1,29 +1,17 @@
 """A newcomer's loads (``tests/toy_loads.py``), added as docs/architecture.md says: one module and one
 catalog line each. They run in the compiled path and the numpy path alike, read their scene table,
 and one of them keeps history per point (issue 15). The kernels are compiled for one catalog, so the
-toy loads are registered in a fresh process with its own numba cache (~1 min of compilation)."""
-
-import json
-import os
-import subprocess
-import sys
-from pathlib import Path
+toy loads are registered in a fresh process with its own numba cache (~2-4 min of compilation on one
+core): ``tests/conftest.py`` starts it when these tests are collected and runs them last, so that it
+compiles beside the other tests."""
 
 import numpy as np
 import pytest
 
-TESTS = Path(__file__).resolve().parent
-
 
 @pytest.fixture(scope="module")
-def measured(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("toy")
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(folder / "numba"),
-               PYTHONPATH=os.pathsep.join([str(TESTS.parent), os.environ.get("PYTHONPATH", "")]))
-    done = subprocess.run([sys.executable, str(TESTS / "toy_loads.py"), str(folder)], capture_output=True,
-                          text=True, env=env, timeout=900)
-    assert done.returncode == 0, done.stderr[-3000:]
-    return json.loads(done.stdout)
+def measured(toy_catalog):
+    return toy_catalog.measured()
 
 
 def test_a_uniform_force_from_its_scene_table_is_extra_weight_in_statics(measured):
