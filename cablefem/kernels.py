@@ -5,9 +5,10 @@ For the loads of ``cablefem.loads.catalog`` and the consistent mass, ``assemble`
 residual M A + G and the tangent g_x (K + v_x C + a_x (M + M_a)) in one loop over elements and
 quadrature points, straight into LAPACK's banded storage with the unknowns ordered along the line.
 At each point it fills a context record (``CONTEXT``: position, its derivatives, velocity,
-acceleration, the unit tangent, the seabed's projection, the step's factors) and calls every load
-of the point's rule in catalog order (``full_point``, ``reduced_point``: a loop over the catalog's
-tuple of point kernels, which numba unrolls into direct calls). Each load reads its parameters by
+acceleration, the unit tangent, the seabed's projection, the step's factors) and calls the loads
+of the point's rule that the line has, in catalog order (``full_point``, ``reduced_point``: a loop
+over the catalog's tuple of point kernels, which numba unrolls into direct calls, each behind the
+line's flag for it: a catalog load a scene does not use costs a flag test, not a call). Each load reads its parameters by
 name from the element's record (``p.drag.normal``), writes its branch state to the point's state
 record, reads its holds and its committed history, writes its trial history, and adds its force
 and Jacobian blocks to the output record (``OUT``: f, A = -(f_r + v_x f_v + a_x f_a),
@@ -38,11 +39,15 @@ FULL_KERNELS, REDUCED_KERNELS, NODE_KERNELS = LAYOUT.full_kernels, LAYOUT.reduce
 FULL_RULES, REDUCED_RULES = LAYOUT.full_rules, LAYOUT.reduced_rules
 
 #: what a point kernel sees of its point (set by ``assemble``); t, stretch and P at full points only
-#: (P, the normal projector I - t t^T, only when a tangent is assembled)
+#: (P, the normal projector I - t t^T, only when a tangent is assembled); which loads of each rule the
+#: line has (``Points.full_loads``, ``reduced_loads``: read from the context, not passed, because
+#: an argument more per point cost more instructions than the calls it saves)
 CONTEXT = np.dtype([("r", "f8", (3,)), ("dr", "f8", (3,)), ("v", "f8", (3,)), ("dv", "f8", (3,)),
                     ("a", "f8", (3,)), ("t", "f8", (3,)), ("stretch", "f8"), ("P", "f8", (3, 3)),
                     ("gap", "f8"), ("n", "f8", (3,)), ("grad_gap", "f8", (3,)), ("dn", "f8", (3, 3)),
-                    ("curved", "?"), ("v_x", "f8"), ("a_x", "f8"), ("jac", "?"), ("held", "?")], align=True)
+                    ("curved", "?"), ("v_x", "f8"), ("a_x", "f8"), ("jac", "?"), ("held", "?"),
+                    ("full_loads", "u1", (len(FULL_KERNELS),)), ("reduced_loads", "u1", (len(REDUCED_KERNELS),))],
+                   align=True)
 #: what a point kernel adds to
 OUT = np.dtype([("f", "f8", (3,)), ("A", "f8", (3, 3)), ("B", "f8", (3, 3)), ("N", "f8", (3,)),
                 ("D", "f8", (3, 3))], align=True)
@@ -57,9 +62,10 @@ Mesh = namedtuple("Mesh", "dofs position phi dphi dx rphi rdphi rdx mass kl ku l
 Bed = namedtuple("Bed", "plane gap normal grad_gap dnormal")
 #: the records of ``cablefem.loads.catalog``: parameters (nel,), and per full (nel, nq) and reduced
 #: (nel, nr) point the committed and trial history, the branch state and the holds; the node loads'
-#: parameters (k,)
+#: parameters (k,); which full and reduced loads of the catalog the line has (bool, in catalog
+#: order: the point loops call only those, so that a load a scene does not use costs no call)
 Points = namedtuple("Points", "params full_old full_new full_state full_hold "
-                              "reduced_old reduced_new reduced_state reduced_hold nodes")
+                              "reduced_old reduced_new reduced_state reduced_hold nodes full_loads reduced_loads")
 #: scratch: a context and an output record, the loads' matrices (k, 3, 3) and vectors (k, 3), an
 #: element's rows (nloc, 3) and matrix (nloc, 3, nloc, 3)
 Work = namedtuple("Work", "ctx out M u Re Ke")
@@ -78,7 +84,13 @@ def points(params, history, nq, nr, nodes):
     (full_old, full_new), (reduced_old, reduced_new) = history["full"], history["reduced"]
     return Points(params, full_old, full_new, records(L.full_state, (nel, nq)), records(L.full_hold, (nel, nq)),
                   reduced_old, reduced_new, records(L.reduced_state, (nel, nr)), records(L.reduced_hold, (nel, nr)),
-                  nodes)
+                  nodes, active(params, L.full), active(params, L.reduced))
+
+
+def active(params, specs):
+    """Which of ``specs`` the parameter records ``params`` (nel,) hold a load of (their ``active``
+    flags, set by ``fused.pack_params``), bool (len(specs),)."""
+    return np.array([bool(params[s.name]["active"].any()) for s in specs], dtype=np.bool_)
 
 
 def work(nloc):
@@ -89,23 +101,31 @@ def work(nloc):
 
 @njit(cache=True, _nrt=False)
 def full_point(ctx, p, old, new, state, hold, out, M, u):
-    """Every full-point load of the catalog, in order, into ``out`` (f, A, B zeroed first)."""
+    """The full-point loads of the catalog the line has (``ctx.full_loads``), in order, into
+    ``out`` (f, A, B zeroed first)."""
     out.f[:] = 0.0
     if ctx.jac:
         out.A[:, :] = 0.0
         out.B[:, :] = 0.0
+    k = 0
     for kernel in literal_unroll(FULL_KERNELS):
-        kernel(ctx, p, old, new, state, hold, out, M, u)
+        if ctx.full_loads[k]:
+            kernel(ctx, p, old, new, state, hold, out, M, u)
+        k += 1
 
 
 @njit(cache=True, _nrt=False)
 def reduced_point(ctx, p, old, new, state, hold, out, M, u):
-    """Every reduced-point load of the catalog, in order, into ``out`` (N, D zeroed first)."""
+    """The reduced-point loads of the catalog the line has (``ctx.reduced_loads``), in order, into
+    ``out`` (N, D zeroed first)."""
     out.N[:] = 0.0
     if ctx.jac:
         out.D[:, :] = 0.0
+    k = 0
     for kernel in literal_unroll(REDUCED_KERNELS):
-        kernel(ctx, p, old, new, state, hold, out, M, u)
+        if ctx.reduced_loads[k]:
+            kernel(ctx, p, old, new, state, hold, out, M, u)
+        k += 1
 
 
 @njit(cache=True, _nrt=False)
@@ -206,6 +226,10 @@ def assemble(mesh, bed, pts, work, state, factors, jac, held, rows, band, elemen
     ctx, out, M, u, Re, Ke = work.ctx[0], work.out[0], work.M, work.u, work.Re, work.Ke
     ctx.v_x, ctx.a_x = factors
     ctx.jac, ctx.held = jac, held
+    for k in range(pts.full_loads.shape[0]):
+        ctx.full_loads[k] = pts.full_loads[k]
+    for k in range(pts.reduced_loads.shape[0]):
+        ctx.reduced_loads[k] = pts.reduced_loads[k]
     nq, nr = mesh.dx.shape[1], mesh.rdx.shape[1]
     for e in elements:
         Re[:] = 0.0

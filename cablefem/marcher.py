@@ -37,8 +37,10 @@ class Marcher:
         pts = ev.points
         self.keeps = ((kernels.byte_view(ev.base_full), kernels.byte_view(pts.full_state)),
                       (kernels.byte_view(ev.base_reduced), kernels.byte_view(pts.reduced_state)))
-        self.commits = ((kernels.byte_view(pts.full_old), kernels.byte_view(pts.full_new)),
-                        (kernels.byte_view(pts.reduced_old), kernels.byte_view(pts.reduced_new)))
+        kept, nothing = integ.system.kept_history(), np.zeros(0, dtype=np.uint8)  # commit what a load keeps
+        self.commits = tuple((kernels.byte_view(old), kernels.byte_view(new)) if rule in kept else (nothing, nothing)
+                             for rule, (old, new) in (("full", (pts.full_old, pts.full_new)),
+                                                      ("reduced", (pts.reduced_old, pts.reduced_new))))
         self.factors = np.full(1, np.nan, dtype=FACTORS)  # kept between runs
 
     @classmethod

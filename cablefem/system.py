@@ -117,9 +117,15 @@ class LineSystem:
                 old[name][key] = value
                 new[name][key] = value
 
+    def kept_history(self):
+        """The rules ("full", "reduced") at whose points a load of the system keeps history: the
+        others' trial history is never written, and committing it would copy zeros."""
+        return {spec.rule for spec in map(catalog.spec_of, self.loads) if spec.history}
+
     def commit_history(self):
         """Make the trial history the committed one (an accepted step or load increment)."""
-        for old, new in self.history.values():
+        for rule in self.kept_history():
+            old, new = self.history[rule]
             old[...] = new
 
     @property

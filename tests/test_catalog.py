@@ -115,3 +115,20 @@ def test_registering_a_load_after_the_kernels_were_built_is_refused():
 
     with pytest.raises(RuntimeError, match="register loads before anything compiles"):
         catalog.register(catalog.CATALOG[0])
+
+
+@pytest.mark.parametrize("name", [spec.name for spec in catalog.CATALOG if spec.rule != "node"])
+def test_the_point_loops_call_only_the_lines_loads_and_the_others_would_add_nothing(name, rng):
+    system = one_load_system(name, 2)
+    state, X, V, A = load_state(system, name, rng)
+    fused = FusedEvaluator.for_system(system, system.props["mass"])
+    layout, pts = catalog.layout(), fused.points
+    np.testing.assert_array_equal(pts.full_loads, [spec.name == name for spec in layout.full])
+    np.testing.assert_array_equal(pts.reduced_loads, [spec.name == name for spec in layout.reduced])
+    rows, band = (x.copy() for x in fused.evaluate(X, V, A, 150.0, 2.2e4))
+    # every kernel called, as before the masks: a load the line has not returns at its flag
+    fused.points = pts._replace(full_loads=np.ones_like(pts.full_loads), reduced_loads=np.ones_like(pts.reduced_loads))
+    every_rows, every_band = fused.evaluate(X, V, A, 150.0, 2.2e4)
+    assert np.array_equal(rows, every_rows) and np.array_equal(band, every_band)
+    # only a load that keeps history is committed (the soil's, at the full points)
+    assert system.kept_history() == ({"full"} if name == "soil" else set())
