@@ -122,7 +122,7 @@ def _point(prob):
             A1[i, a] = (1 - am) * acceleration + am * A[i, a]
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)  # a call would copy the Problem's fields once more
 def _assemble_at(prob, X, V, A, tangent, held, elements):
     """M A + G at (X, V, A) into ``prob.rows`` over ``elements`` and, with ``tangent``, its banded
     tangent into ``prob.band`` (both zeroed first), the seabed projected first unless it is a plane.

@@ -5,6 +5,7 @@ numbers to round-off."""
 import numpy as np
 import pytest
 
+from cablefem import policy
 from cablefem.dynamics import GeneralizedAlpha
 from cablefem.run import StepControl, boundary_path, build_system, start_states
 from cablefem.scenes import flume_scene
@@ -80,3 +81,26 @@ def test_compiled_alpha_steps_project_a_grid_seabed_as_the_python_steps():
     assert s1 == s2
     assert np.max(np.abs(f1 - f2)) <= 1e-9 * np.max(np.abs(f2))
     assert np.max(np.abs(X1 - X2)) <= 1e-9
+
+
+def test_march_takes_a_steps_reactions_in_python_where_the_loop_could_not():
+    """``policy.REACTIONS`` (the walk lost a point evaluating the end forces after a step): the
+    step stays taken, its forces come from ``Integrator.reactions``, the loop goes on after it."""
+    scene = flume_scene("flat", "dynamic", 12, 1, 1.0, 0.1)
+    times = StepControl(scene.solver, 0.1).times(0.0, 1.0)
+    expected = integrator(scene, 0.1, True, 0.5).march(times)
+    integ = integrator(scene, 0.1, True, 0.5)
+    run, stops = integ.marcher.run, []
+
+    def stopping(integ, times, ends, fractions, forces):  # the first step of every other call, then stop
+        if len(times) % 2:
+            return run(integ, times, ends, fractions, forces)
+        run(integ, times[:1], ends[:1], fractions[:1], forces[:1])
+        forces[0] = np.nan
+        stops.append(len(times))
+        return policy.REACTIONS, 0, 0.0
+
+    integ.marcher.run = stopping
+    forces = integ.march(times)
+    assert stops and np.all(np.isfinite(forces))
+    assert np.max(np.abs(forces - expected)) <= 1e-9 * np.max(np.abs(expected))
