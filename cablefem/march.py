@@ -6,7 +6,7 @@ A step spent ~90 us per Newton iteration in Python around the compiled kernel (s
 norms, LU calls through scipy, the boundary motion), more than the kernel itself on the small
 meshes of the coarse accuracy levels (verification/work_precision/README.md); here runs of
 steps go without returning to Python, and the numbers are those of the Python ops to round-off
-(``tests/test_march.py``).
+(``tests/test_march.py``, ``tests/test_march_alpha.py``).
 
 The scheme is a run-time value of the ``Problem`` (``SCHEME``), one compiled policy for both:
 variable-step BDF2 (desire2023 Sec. 2.1.2: backward Euler to start, then y' ~ c0 y_{n+1} + c1 y_n
@@ -48,13 +48,12 @@ FACTORS = np.dtype([("v_x", "f8"), ("auto_left", "f8")])
 #: X, V, A, the step before's Xp, Vp, the last predictor and the rows M A + G (N, 3), updated in
 #: place; the trial X1, the velocity and acceleration V1, A1 where the loads are evaluated (BDF2: at
 #: X1; generalised-alpha: the alpha-weighted ones, at the positions X_alpha), the guess, BDF2's
-#: histories and Newton's base (N, 3); the increment,
-#: Newton's step and its own step when corrected (n,); the band and its LU (flat, LAPACK's
-#: column-major layout), pivots and multipliers; the base's branch state; the byte views (dst, src)
-#: that keep the branch state as the base's and commit the trial history; the clock (CLOCK) and the
-#: factors' key (FACTORS); the scheme (SCHEME); counters (policy.COUNTERS); the anchor and the fairlead at the end of
-#: each step (m, 2, 3) and at its splits (m, FRACTIONS - 1, 2, 3), and at the end of the attempt
-#: (2, 3) (an end that is not prescribed, ``Line.prescribed``, is an unknown like the others)
+#: histories and Newton's base (N, 3); the increment, Newton's step and its own step when corrected
+#: (n,); the band and its LU (flat, LAPACK's column-major layout), pivots and multipliers; the
+#: base's branch state; the byte views (dst, src) that keep the branch state as the base's and
+#: commit the trial history; the clock (CLOCK), the factors' key (FACTORS) and the scheme (SCHEME);
+#: counters (policy.COUNTERS); the anchor and the fairlead at the end of each step (m, 2, 3) and at
+#: its splits (m, FRACTIONS - 1, 2, 3), and at the end of the attempt (2, 3) (an end that is not prescribed, ``Line.prescribed``, is an unknown like the others)
 Problem = namedtuple("Problem", "settings mesh bed pts work projector free_nodes free_order all_elements "
                                 "end_elements anchor_node fairlead_node scale "
                                 "X V A Xp Vp prediction rows X1 V1 A1 X_alpha guess x_hist v_hist base "
