@@ -14,7 +14,7 @@ import hashlib
 from pathlib import Path
 
 #: the sources of the compiled kernels and of the constants compiled into them
-PATTERNS = ("kernels.py", "march.py", "junction_march.py", "policy.py", "banded.py",
+PATTERNS = ("kernels.py", "march.py", "march_seabed.py", "junction_march.py", "policy.py", "banded.py",
             "loads/*.py",  # every load of the catalog, whatever its file
             "geometry/_vertex_normal_jit.py", "geometry/_walk_jit.py", "geometry/grid.py",
             "geometry/_vertex_normal.py", "geometry/_search.py")  # INSIDE_TOLERANCE, WALK_STEPS

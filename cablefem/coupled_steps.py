@@ -42,8 +42,9 @@ class JunctionSteps:
         self.newton_iterations = 0
         self.halvings = 0
         self.cache = {}  # times[-1] -> forces per integrator, for ``march`` of each member
-        # the compiled loop (``cablefem.junction_march``) where every member marches compiled
-        self.compiled = all(getattr(integ, "marcher", None) is not None for integ in integrators)
+        # the compiled loop (``cablefem.junction_march``, BDF2) where every member marches compiled
+        self.compiled = all(getattr(integ, "marcher", None) is not None and integ.name == "bdf2"
+                            for integ in integrators)
         self.group = None  # its ``junction_march.Group``, built at the first march
         # per integrator: its junction ends as (end, row of the end in the free DOFs, junction)
         self.ends = [[] for _ in integrators]
@@ -131,7 +132,7 @@ class JunctionSteps:
         for integ, prob in zip(members, problems):
             integ.marcher.finish(integ, prob)
             if status == junction_march.DONE:  # BDF2's factors of the last step, as the Python steps leave them
-                c0 = float(prob.clock[0]["c0"])
+                c0 = float(prob.clock[0]["v_x"])
                 integ.c0, integ.t_eval, integ.factors = c0, integ.t, (c0, c0 * c0, 1.0)
                 integ.x_hist, integ.v_hist = prob.x_hist.copy(), prob.v_hist.copy()
         self.newton_iterations += int(problems[0].counters[policy.ITERATIONS])

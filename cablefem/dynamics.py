@@ -13,7 +13,7 @@ so that the Newton tangent is
 
 Everything else is shared: the Newton policy (iterations, line search, branch corrections,
 retries, halving, growth) is ``cablefem.policy``, run here on Python ops (``cablefem.python_ops``)
-and, for BDF2 on the compiled kernel, in numba (``cablefem.march``). Like scipy.integrate's
+and, for BDF2 and generalised-alpha on the compiled kernel, in numba (``cablefem.march``). Like scipy.integrate's
 solvers, an integrator has a ``step()`` and counters (``nfev`` residual evaluations, ``njev``
 tangents, ``nlu`` factorisations, ``newton_iterations``, ``steps``, ``rejected``). A step that
 fails at ``min_dt`` raises a ``ConvergenceError`` with its residual. ``INTEGRATORS`` is the one

@@ -222,11 +222,11 @@ def _rows(p, k, g):
                 return False
     if g.ends[k, 0, 0] < 0 and g.ends[k, 1, 0] < 0:
         return True
-    c0 = p.clock[0].c0
+    clock = p.clock[0]
     nb = p.rhs.shape[0]
     band2 = p.band.reshape((nb, 2 * p.mesh.kl + p.mesh.ku + 1)).T  # unused without a tangent
     p.base[:] = 0.0
-    kernels.assemble(p.mesh, p.bed, p.pts, p.work, (p.X1, p.V1, p.A1), (c0, c0 * c0), policy.FLAG[0],
+    kernels.assemble(p.mesh, p.bed, p.pts, p.work, (p.X1, p.V1, p.A1), (clock.v_x, clock.a_x), policy.FLAG[0],
                      policy.FLAG[0], p.base, band2, p.end_elements)
     return True
 

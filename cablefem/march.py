@@ -1,4 +1,4 @@
-"""BDF2 steps on the compiled kernel, many in one numba call: the policy's compiled ops.
+"""Time steps on the compiled kernel, many in one numba call: the policy's compiled ops.
 
 ``cablefem.policy`` writes the Newton policy once (iterations, line search, branch corrections,
 retries, halving and growth); this module binds it to compiled ops and compiles it (``STEPS``).
@@ -6,17 +6,16 @@ A step spent ~90 us per Newton iteration in Python around the compiled kernel (s
 norms, LU calls through scipy, the boundary motion), more than the kernel itself on the small
 meshes of the coarse accuracy levels (verification/work_precision/README.md); here runs of
 steps go without returning to Python, and the numbers are those of the Python ops to round-off
-(``tests/test_march.py``).
+(``tests/test_march.py``, ``tests/test_march_alpha.py``).
 
-The scheme is variable-step BDF2 (desire2023 Sec. 2.1.2: backward Euler to start, then
-y' ~ c0 y_{n+1} + c1 y_n + c2 y_{n-1} on X and V). The banded LU is ``cablefem.banded``
-(LAPACK's dgbtf2/dgbtrs written out for numba: numba cannot cache a ctypes call to LAPACK).
-
-The seabed is projected in the loop too: a plane by the kernel itself, a ``DepthGrid`` by its
-compiled bilinear projection, a ``TriangulatedSurface`` by its compiled walk
-(``geometry._walk_jit.project``), which starts where the seabed's last call for these points ended
-and hands its last call back. When the walk cannot place a point (it moved beyond its triangle's
-neighbours), the loop stops and that step goes on in Python, whose search finds it.
+The scheme is a run-time value of the ``Problem`` (``SCHEME``), one compiled policy for both:
+variable-step BDF2 (desire2023 Sec. 2.1.2: backward Euler to start, then y' ~ c0 y_{n+1} + c1 y_n
++ c2 y_{n-1} on X and V) or generalised-alpha (``cablefem.schemes.GeneralizedAlpha``: the loads
+at the alpha-weighted point of the Newmark update, the tangent scaled by g_x = 1 - alpha_f, the
+end forces evaluated at t_{n+1}). The banded LU is ``cablefem.banded`` (LAPACK's dgbtf2/dgbtrs
+written out for numba: numba cannot cache a ctypes call to LAPACK). The seabed is projected in the
+loop too (``cablefem.march_seabed``); where the walk cannot place a point, the loop stops and that
+step goes on in Python, whose search finds it.
 """
 
 from collections import namedtuple
@@ -26,43 +25,40 @@ from numba import njit
 
 from . import kernels, policy
 from .banded import lu_factor, lu_solve
-from .geometry import _walk_jit as walk
-from .geometry.grid import _project as _grid_project
-from .geometry._search import WALK_STEPS
+from .march_seabed import PLANE, GRID, TRIANGULATED, Projector, project  # noqa: F401 (marcher's)
 
-#: seabeds the loop projects itself: a plane (in the kernel), a depth grid, a triangulated surface
-PLANE, GRID, TRIANGULATED = 0, 1, 2
 #: a step of the compiled loop may be halved this many times (the fairlead's positions at the
 #: 2**DEPTH - 1 points that split each step evenly are given); deeper, the Python ops go on
 DEPTH = 3
 FRACTIONS = 2 ** DEPTH
 
-#: the seabed's projection in the loop: kind, a grid's axes and depths, a triangulated surface's
-#: tables (``walk.Surface``) and typical triangle size [m], the walk's warm start (``walk.Start``),
-#: and scratch: what the walk finds with the packed outputs (``walk.Result``; a grid's outputs in
-#: its ``out``) and the points (3, n)
-Projector = namedtuple("Projector", "kind gx gy gz surface typical start result xyz")
+#: the schemes (``SCHEME.kind``): BDF2, generalised-alpha
+BDF2, GENERALIZED_ALPHA = 0, 1
+#: a run's scheme (one record): its kind and generalised-alpha's alpha_m, alpha_f, gamma, beta
+SCHEME = np.dtype([("kind", "i8"), ("alpha_m", "f8"), ("alpha_f", "f8"), ("gamma", "f8"), ("beta", "f8")])
 #: a run's clock (one record): t [s], the step before (0 at the start), the last step (0 if none), the
-#: attempt that stopped the run, the last attempt's final relative residual, the attempt's c0
+#: attempt that stopped the run, the last attempt's final relative residual, the attempt's factors
+#: (v_x, a_x, g_x) (``cablefem.dynamics``; BDF2's (c0, c0^2, 1)) and its size h [s]
 CLOCK = np.dtype([("t", "f8"), ("h_before", "f8"), ("last_h", "f8"), ("stopped", "f8"), ("residual", "f8"),
-                  ("c0", "f8")])
-#: what modified Newton's kept factors belong to (one record, kept between runs): the c0 of the
-#: factors (NaN: none) and "auto"'s full-Newton attempts still to run
-FACTORS = np.dtype([("c0", "f8"), ("auto_left", "f8")])
+                  ("v_x", "f8"), ("a_x", "f8"), ("g_x", "f8"), ("h", "f8")])
+#: what modified Newton's kept factors belong to (one record, kept between runs): the v_x of the
+#: factors (NaN: none; a_x and g_x follow from it) and "auto"'s full-Newton attempts still to run
+FACTORS = np.dtype([("v_x", "f8"), ("auto_left", "f8")])
 #: everything the compiled ops read and write (``Marcher.problem``): the kernel's records; the state
 #: X, V, A, the step before's Xp, Vp, the last predictor and the rows M A + G (N, 3), updated in
-#: place; the trial X1, V1, A1, the guess, BDF2's histories and Newton's base (N, 3); the increment,
-#: Newton's step and its own step when corrected (n,); the band and its LU (flat, LAPACK's
-#: column-major layout), pivots and multipliers; the base's branch state; the byte views (dst, src)
-#: that keep the branch state as the base's and commit the trial history; the clock (CLOCK) and the
-#: factors' key (FACTORS); counters (policy.COUNTERS); the anchor and the fairlead at the end of
-#: each step (m, 2, 3) and at its splits (m, FRACTIONS - 1, 2, 3), and at the end of the attempt
-#: (2, 3) (an end that is not prescribed, ``Line.prescribed``, is an unknown like the others)
+#: place; the trial X1, the velocity and acceleration V1, A1 where the loads are evaluated (BDF2: at
+#: X1; generalised-alpha: the alpha-weighted ones, at the positions X_alpha), the guess, BDF2's
+#: histories and Newton's base (N, 3); the increment, Newton's step and its own step when corrected
+#: (n,); the band and its LU (flat, LAPACK's column-major layout), pivots and multipliers; the
+#: base's branch state; the byte views (dst, src) that keep the branch state as the base's and
+#: commit the trial history; the clock (CLOCK), the factors' key (FACTORS) and the scheme (SCHEME);
+#: counters (policy.COUNTERS); the anchor and the fairlead at the end of each step (m, 2, 3) and at
+#: its splits (m, FRACTIONS - 1, 2, 3), and at the end of the attempt (2, 3) (an end that is not prescribed, ``Line.prescribed``, is an unknown like the others)
 Problem = namedtuple("Problem", "settings mesh bed pts work projector free_nodes free_order all_elements "
                                 "end_elements anchor_node fairlead_node scale "
-                                "X V A Xp Vp prediction rows X1 V1 A1 guess x_hist v_hist base "
+                                "X V A Xp Vp prediction rows X1 V1 A1 X_alpha guess x_hist v_hist base "
                                 "rhs step original band lu ipiv multipliers base_full base_reduced keeps commits "
-                                "clock factors counters ends fractions target")
+                                "clock factors scheme counters ends fractions target")
 
 
 @njit(cache=True, _nrt=False)
@@ -93,88 +89,70 @@ def _largest(x):
     return size
 
 
-@njit(cache=True)
-def _project(proj, X1, mesh, bed, derivatives):
-    """Project the full quadrature points of X1 onto a grid or triangulated seabed into the bed's
-    gap (nel, nq), normal and, with ``derivatives`` (a tangent needs them), gap gradient (nel, nq, 3)
-    and normal gradient (nel, nq, 3, 3), as ``FusedEvaluator.bed`` does through ``Seabed.project``;
-    the walk's warm start moves on to this call. Returns the number of points the walk did not
-    place (-1: moved too far)."""
-    dofs, phi, xyz, out = mesh.dofs, mesh.phi, proj.xyz, proj.result.out
-    nel, nloc = dofs.shape
-    nq = phi.shape[2]
-    for e in range(nel):
-        for g in range(nq):
-            p = e * nq + g
-            for a in range(3):
-                acc = 0.0
-                for l in range(nloc):
-                    acc += phi[l, e, g] * X1[dofs[e, l], a]
-                xyz[a, p] = acc
-    if proj.kind == GRID:
-        _grid_project(xyz, proj.gx, proj.gy, proj.gz, policy.FLAG[1], out)
-    else:
-        mode = walk.EVERYTHING if derivatives else walk.GAP_AND_DIRECTION
-        lost = walk.project(xyz, proj.surface, proj.start, proj.typical, WALK_STEPS, policy.FLAG[1], mode,
-                            proj.result)
-        if lost != 0:
-            return lost
-        start, result = proj.start, proj.result
-        for p in range(xyz.shape[1]):  # the next call starts here (loops: no temporary copies)
-            for a in range(3):
-                start.origin[a, p] = xyz[a, p]
-            start.triangle[p] = result.triangle[p]
-            start.h[p] = result.sth[2, p]
-            start.unheld[p] = False
-    for e in range(nel):
-        for g in range(nq):
-            p = e * nq + g
-            bed.gap[e, g] = out[walk.GAP, p]
-            for a in range(3):
-                bed.normal[e, g, a] = out[1 + a, p]  # walk.DIRECTION
-                if derivatives:
-                    bed.grad_gap[e, g, a] = out[7 + a, p]  # walk.GAP_GRADIENT
-                    for b in range(3):
-                        bed.dnormal[e, g, a, b] = out[10 + 3 * a + b, p]  # walk.DIRECTION_GRADIENT
-    return 0
-
-
 # ------------------------------------------------------------------------- the policy's ops
+@njit(cache=True, inline="always", _nrt=False)
+def _newmark(prob, i, a, h, g, b):
+    """Generalised-alpha's V and A at t + h of row i, component a, from X1 (``GeneralizedAlpha.newmark``)."""
+    X, V, A = prob.X, prob.V, prob.A
+    acceleration = (prob.X1[i, a] - X[i, a] - h * V[i, a]) / (b * h * h) - (0.5 / b - 1.0) * A[i, a]
+    return V[i, a] + h * ((1 - g) * A[i, a] + g * acceleration), acceleration
+
+
 @njit(cache=True, _nrt=False)
 def _point(prob):
-    """V and A of BDF2 at the trial positions X1: V = c0 X1 + x_hist, A = c0 V + v_hist."""
-    c0 = prob.clock[0].c0
-    X1, V1, A1, x_hist, v_hist = prob.X1, prob.V1, prob.A1, prob.x_hist, prob.v_hist
+    """V1 and A1 at the trial positions X1: BDF2's V = c0 X1 + x_hist, A = c0 V + v_hist; or
+    generalised-alpha's alpha-weighted point of the Newmark update (``GeneralizedAlpha.point``),
+    its positions into X_alpha."""
+    X1, V1, A1, clock = prob.X1, prob.V1, prob.A1, prob.clock[0]
+    if prob.scheme[0].kind == BDF2:
+        c0, x_hist, v_hist = clock.v_x, prob.x_hist, prob.v_hist
+        for i in range(X1.shape[0]):
+            for a in range(3):
+                V1[i, a] = c0 * X1[i, a] + x_hist[i, a]
+                A1[i, a] = c0 * V1[i, a] + v_hist[i, a]
+        return
+    scheme, X, V, A, Xa = prob.scheme[0], prob.X, prob.V, prob.A, prob.X_alpha
+    am, af = scheme.alpha_m, scheme.alpha_f
     for i in range(X1.shape[0]):
         for a in range(3):
-            V1[i, a] = c0 * X1[i, a] + x_hist[i, a]
-            A1[i, a] = c0 * V1[i, a] + v_hist[i, a]
+            velocity, acceleration = _newmark(prob, i, a, clock.h, scheme.gamma, scheme.beta)
+            Xa[i, a] = (1 - af) * X1[i, a] + af * X[i, a]
+            V1[i, a] = (1 - af) * velocity + af * V[i, a]
+            A1[i, a] = (1 - am) * acceleration + am * A[i, a]
 
 
-@njit(cache=True, _nrt=False)
-def _assemble(prob, tangent, held, elements):
-    """The step residual M A + G at the trial point into ``prob.rows`` over ``elements`` and, with
-    ``tangent``, its banded tangent into ``prob.band`` (both zeroed first), the seabed projected first
-    unless it is a plane. Returns the projection's status (0, or the points the walk did not place)."""
-    _point(prob)
+@njit(cache=True, inline="always", _nrt=False)  # a call would copy the Problem's fields once more
+def _assemble_at(prob, X, V, A, tangent, held, elements):
+    """M A + G at (X, V, A) into ``prob.rows`` over ``elements`` and, with ``tangent``, its banded
+    tangent into ``prob.band`` (both zeroed first), the seabed projected first unless it is a plane.
+    Returns the projection's status (0, or the points the walk did not place)."""
     if prob.projector.kind != PLANE:
-        lost = _project(prob.projector, prob.X1, prob.mesh, prob.bed, tangent)
+        lost = project(prob.projector, X, prob.mesh, prob.bed, tangent)
         if lost != 0:
             return lost
-    c0 = prob.clock[0].c0
+    factors = (prob.clock[0].v_x, prob.clock[0].a_x)
     nb = prob.rhs.shape[0]
     ld = 2 * prob.mesh.kl + prob.mesh.ku + 1
     band2 = prob.band.reshape((nb, ld)).T  # the (ld, nb) column-major view the assembly writes
     prob.rows[:] = 0.0
     if tangent:
         band2.T[:] = 0.0  # the contiguous (nb, ld) view: a memset, not a strided walk
-    kernels.assemble(prob.mesh, prob.bed, prob.pts, prob.work, (prob.X1, prob.V1, prob.A1), (c0, c0 * c0),
-                     tangent, held, prob.rows, band2, elements)
+    kernels.assemble(prob.mesh, prob.bed, prob.pts, prob.work, (X, V, A), factors, tangent, held, prob.rows, band2,
+                     elements)
     if prob.mesh.nodes.shape[0]:
-        kernels.assemble_nodes(prob.mesh, prob.pts, prob.work, (prob.X1, prob.V1, prob.A1), (c0, c0 * c0),
-                               tangent, prob.rows, band2)
-    prob.counters[policy.NFEV] += 1
+        kernels.assemble_nodes(prob.mesh, prob.pts, prob.work, (X, V, A), factors, tangent, prob.rows, band2)
     return 0
+
+
+@njit(cache=True, _nrt=False)
+def _assemble(prob, tangent, held, elements):
+    """The step residual at the trial point over ``elements`` (``_assemble_at``), counted."""
+    _point(prob)
+    X = prob.X1 if prob.scheme[0].kind == BDF2 else prob.X_alpha
+    lost = _assemble_at(prob, X, prob.V1, prob.A1, tangent, held, elements)
+    if lost == 0:
+        prob.counters[policy.NFEV] += 1
+    return lost
 
 
 @njit(cache=True, inline="always", _nrt=False)
@@ -200,17 +178,21 @@ def norm(prob):
 @njit(cache=True, _nrt=False)
 def increment(prob, refactor):
     """The Newton increment of the free unknowns for the rows into ``prob.rhs`` (band order): with
-    ``refactor`` from fresh LU factors of the band (counted; ``factors.c0`` the c0 they belong to,
-    NaN when singular), else from those kept. Returns its largest entry (NaN: singular)."""
-    mesh, key, counters, rhs = prob.mesh, prob.factors[0], prob.counters, prob.rhs
+    ``refactor`` from fresh LU factors of g_x times the band (counted; ``factors.v_x`` the v_x they
+    belong to, NaN when singular), else from those kept. Returns its largest entry (NaN: singular)."""
+    mesh, key, counters, rhs, clock = prob.mesh, prob.factors[0], prob.counters, prob.rhs, prob.clock[0]
     if refactor:
         counters[policy.NJEV] += 1
-        _copy_flat(prob.lu, prob.band)
-        key.c0 = np.nan
+        if clock.g_x == 1.0:
+            _copy_flat(prob.lu, prob.band)
+        else:  # the tangent of the unknowns X1: g_x (K + a_x M), as ``Integrator.factorize``
+            for j in range(prob.lu.shape[0]):
+                prob.lu[j] = clock.g_x * prob.band[j]
+        key.v_x = np.nan
         if not lu_factor(prob.lu, prob.ipiv.shape[0], mesh.kl, mesh.ku, prob.ipiv, prob.multipliers):
             return np.nan
         counters[policy.NLU] += 1
-        key.c0 = prob.clock[0].c0
+        key.v_x = clock.v_x
     for j in range(prob.free_order.shape[0]):
         for a in range(3):
             rhs[3 * j + a] = -prob.rows[prob.free_order[j], a]
@@ -222,12 +204,12 @@ def increment(prob, refactor):
 
 @njit(cache=True, inline="always", _nrt=False)
 def factors_current(prob):
-    return prob.factors[0].c0 == prob.clock[0].c0
+    return prob.factors[0].v_x == prob.clock[0].v_x
 
 
 @njit(cache=True, inline="always", _nrt=False)
 def forget_factors(prob):
-    prob.factors[0].c0 = np.nan
+    prob.factors[0].v_x = np.nan
 
 
 @njit(cache=True, inline="always", _nrt=False)
@@ -270,24 +252,33 @@ def restore_original(prob):
 
 @njit(cache=True, inline="always", _nrt=False)
 def begin(prob, h):
-    """BDF2's coefficients for a step of h from the current state (backward Euler to start), its
-    histories x_hist = c1 X + c2 Xp, v_hist = c1 V + c2 Vp, and the Taylor predictor X + h V + h^2/2 A
-    with the prescribed ends in place (``prob.target``, set by ``place_ends``)."""
+    """The scheme's factors for a step of h from the current state (BDF2: backward Euler to start,
+    then its histories x_hist = c1 X + c2 Xp, v_hist = c1 V + c2 Vp; generalised-alpha:
+    ``GeneralizedAlpha.begin``'s) and the Taylor predictor X + h V + h^2/2 A with the prescribed ends
+    in place (``prob.target``, set by ``place_ends``)."""
     X, V, A, Xp, Vp, guess = prob.X, prob.V, prob.A, prob.Xp, prob.Vp, prob.guess
-    clock = prob.clock[0]
-    h_before = clock.h_before
-    start = h_before == 0.0
-    if start:
-        c0, c1, c2 = 1.0 / h, -1.0 / h, 0.0
+    clock, scheme = prob.clock[0], prob.scheme[0]
+    clock.h = h
+    if scheme.kind == BDF2:
+        h_before = clock.h_before
+        start = h_before == 0.0
+        if start:
+            c0, c1, c2 = 1.0 / h, -1.0 / h, 0.0
+        else:
+            w = h / h_before
+            c0, c1, c2 = (1 + 2 * w) / ((1 + w) * h), -(1 + w) / h, w * w / ((1 + w) * h)
+        clock.v_x, clock.a_x, clock.g_x = c0, c0 * c0, 1.0
+        for i in range(X.shape[0]):
+            for a in range(3):
+                prob.x_hist[i, a] = c1 * X[i, a] + c2 * (X[i, a] if start else Xp[i, a])
+                prob.v_hist[i, a] = c1 * V[i, a] + c2 * (V[i, a] if start else Vp[i, a])
+                guess[i, a] = X[i, a] + h * V[i, a] + 0.5 * h * h * A[i, a]
     else:
-        w = h / h_before
-        c0, c1, c2 = (1 + 2 * w) / ((1 + w) * h), -(1 + w) / h, w * w / ((1 + w) * h)
-    clock.c0 = c0
-    for i in range(X.shape[0]):
-        for a in range(3):
-            prob.x_hist[i, a] = c1 * X[i, a] + c2 * (X[i, a] if start else Xp[i, a])
-            prob.v_hist[i, a] = c1 * V[i, a] + c2 * (V[i, a] if start else Vp[i, a])
-            guess[i, a] = X[i, a] + h * V[i, a] + 0.5 * h * h * A[i, a]
+        am, af, g, b = scheme.alpha_m, scheme.alpha_f, scheme.gamma, scheme.beta
+        clock.v_x, clock.a_x, clock.g_x = g / (b * h), (1 - am) / ((1 - af) * b * h * h), 1 - af
+        for i in range(X.shape[0]):
+            for a in range(3):
+                guess[i, a] = X[i, a] + h * V[i, a] + 0.5 * h * h * A[i, a]
     for a in range(3):
         if prob.mesh.hi < X.shape[0] - 1:  # the fairlead end is prescribed
             guess[prob.fairlead_node, a] = prob.target[1, a]
@@ -302,13 +293,21 @@ def restart(prob):
 
 @njit(cache=True, inline="always", _nrt=False)
 def accept(prob, h):
-    """The trial is the new state at t + h: BDF2's memory moves on."""
+    """The trial is the new state at t + h: BDF2's memory moves on; generalised-alpha's V and A are
+    the Newmark update's."""
     _copy_rows(prob.prediction, prob.guess)
-    _copy_rows(prob.Xp, prob.X)
-    _copy_rows(prob.Vp, prob.V)
-    _copy_rows(prob.X, prob.X1)
-    _copy_rows(prob.V, prob.V1)
-    _copy_rows(prob.A, prob.A1)
+    scheme = prob.scheme[0]
+    if scheme.kind == BDF2:
+        _copy_rows(prob.Xp, prob.X)
+        _copy_rows(prob.Vp, prob.V)
+        _copy_rows(prob.X, prob.X1)
+        _copy_rows(prob.V, prob.V1)
+        _copy_rows(prob.A, prob.A1)
+    else:
+        for i in range(prob.X.shape[0]):
+            for a in range(3):
+                prob.V[i, a], prob.A[i, a] = _newmark(prob, i, a, h, scheme.gamma, scheme.beta)
+                prob.X[i, a] = prob.X1[i, a]
     for dst, src in prob.commits:
         _copy_flat(dst, src)
     clock = prob.clock[0]
@@ -363,12 +362,21 @@ def place_ends(prob, k, j, h):
 
 @njit(cache=True, inline="always", _nrt=False)
 def reactions(prob, forces, k):
+    """The line's forces on fairlead and anchor into forces[k]: minus the rows there, which BDF2's
+    ``finish`` left at the state; generalised-alpha's balance holds at t_{n+1-alpha_f}, so its rows are
+    evaluated at the state over the end elements first, uncounted (as ``Integrator.reactions``).
+    Returns the projection's status (0, or the points the walk did not place)."""
+    if prob.scheme[0].kind != BDF2:
+        lost = _assemble_at(prob, prob.X, prob.V, prob.A, policy.FLAG[0], policy.FLAG[0], prob.end_elements)
+        if lost != 0:
+            return lost
     for a in range(3):
         forces[k, 0, a] = -prob.rows[prob.fairlead_node, a]
         forces[k, 1, a] = -prob.rows[prob.anchor_node, a]
+    return 0
 
 
 # -------------------------------------------------------------------- the compiled policy
 #: the policy bound to these ops and compiled; ``policy.advance`` calls ``attempt`` through the ops
-_BOUND = policy.bind(__import__(__name__, fromlist=["_"]), compile=njit(cache=True), name="bdf2")
+_BOUND = policy.bind(__import__(__name__, fromlist=["_"]), compile=njit(cache=True), name="march")
 attempt, STEPS = _BOUND["attempt"], _BOUND["steps"]

@@ -1,21 +1,22 @@
-"""The Python side of the compiled BDF2 steps (``cablefem.march``): a ``Marcher`` packs a ``BDF2``
-integrator, its compiled kernel and its seabed into the ``Problem`` the compiled policy runs on,
-and hands the results back."""
+"""The Python side of the compiled steps (``cablefem.march``): a ``Marcher`` packs a ``BDF2`` or
+``GeneralizedAlpha`` integrator, its scheme (``CompiledSteps.compiled_scheme``), its compiled kernel
+and its seabed into the ``Problem`` the compiled policy runs on, and hands the results back."""
 
 import numpy as np
 
 from . import kernels, policy
 from .geometry import DepthGrid, TriangulatedSurface
 from .geometry import _walk_jit as walk
-from .march import CLOCK, FACTORS, FRACTIONS, GRID, PLANE, STEPS, TRIANGULATED, Problem, Projector, attempt
+from .march import (BDF2, CLOCK, FACTORS, FRACTIONS, GRID, PLANE, SCHEME, STEPS, TRIANGULATED, Problem, Projector,
+                    attempt)
 
 
 class Marcher:
-    """Runs a ``BDF2`` integrator's steps through the compiled policy (``STEPS``); built by
-    ``for_integrator``."""
+    """Runs an integrator's steps through the compiled policy (``STEPS``); built by ``for_integrator``."""
 
     def __init__(self, integ, kind):
         fem, ev = integ.fem, integ.fused
+        self.scheme = np.array([integ.compiled_scheme()], dtype=SCHEME)
         self.seabed, self.kind = integ.system.seabed, kind
         nel, nq = ev.full.dx.shape
         if kind == PLANE:  # the kernel computes the gap itself
@@ -33,7 +34,7 @@ class Marcher:
         size = n * (2 * ev.kl + ev.ku + 1)
         self.vectors = tuple(np.zeros(n) for _ in range(3))  # rhs, step, original
         self.bands = (np.zeros(size), np.zeros(size), np.zeros(n, dtype=np.int64), np.empty(ev.kl + 1))
-        self.rows = tuple(np.zeros((N, 3)) for _ in range(7))  # X1, V1, A1, guess, x_hist, v_hist, base
+        self.rows = tuple(np.zeros((N, 3)) for _ in range(8))  # X1, V1, A1, X_alpha, guess, x_hist, v_hist, base
         pts = ev.points
         self.keeps = ((kernels.byte_view(ev.base_full), kernels.byte_view(pts.full_state)),
                       (kernels.byte_view(ev.base_reduced), kernels.byte_view(pts.reduced_state)))
@@ -45,8 +46,9 @@ class Marcher:
 
     @classmethod
     def for_integrator(cls, integ):
-        """A marcher for ``integ`` when it evaluates with the compiled kernel on a plane, a depth grid
-        or a triangulated surface with compiled projections; None otherwise (the Python ops apply)."""
+        """A marcher for ``integ`` (a ``CompiledSteps``) when it evaluates with the compiled kernel on a
+        plane, a depth grid or a triangulated surface with compiled projections; None otherwise (the
+        Python ops apply)."""
         ev, seabed = integ.fused, integ.system.seabed
         if ev is None:
             return None
@@ -83,23 +85,25 @@ class Marcher:
     def problem(self, integ, ends, fractions):
         """The ``Problem`` of ``integ``'s current state, the anchor and fairlead at the ends of the
         steps to come (m, 2, 3) and at their splits (m, FRACTIONS - 1, 2, 3)."""
-        h_before, Xp, Vp = (0.0, integ.X, integ.V) if integ.previous is None else integ.previous
+        memory = integ.memory()  # BDF2's step before; generalised-alpha has none
+        h_before, Xp, Vp = (0.0, integ.X, integ.V) if memory is None else memory
         state = tuple(np.array(x, dtype=float) for x in (integ.X, integ.V, integ.A, Xp, Vp, integ.X))
         clock = np.zeros(1, CLOCK)
-        clock[0] = (integ.t, h_before, integ.last_h or 0.0, 0.0, np.nan, np.nan)
+        clock[0] = (integ.t, h_before, integ.last_h or 0.0, 0.0, np.nan, np.nan, np.nan, np.nan, np.nan)
         self.factors["auto_left"] = integ.full_steps_left  # "auto" Newton's state, shared with the Python ops
         ev, fem = self.ev, integ.fem
         return Problem(self.settings, ev.mesh, self.bed, ev.points, ev.work, self.projector(integ.X),
                        fem.free_dofs.astype(np.int64), ev.free_order, ev.elements, self.end_elements,
                        int(fem.anchor_dof), int(fem.fairlead_dof), integ.scale, *state, np.zeros_like(integ.X),
                        *self.rows, *self.vectors, *self.bands, ev.base_full, ev.base_reduced, self.keeps,
-                       self.commits, clock, self.factors, np.zeros(len(policy.COUNTERS), dtype=np.int64),
+                       self.commits, clock, self.factors, self.scheme, np.zeros(len(policy.COUNTERS), dtype=np.int64),
                        np.ascontiguousarray(ends, dtype=float), np.ascontiguousarray(fractions, dtype=float),
                        np.zeros((2, 3)))
 
     def finish(self, integ, prob, count_steps=True):
         """Hand the run's results back to ``integ``: counters, "auto"'s state, the seabed walk's
-        last call and, if a step was taken, the state."""
+        last call and, if a step was taken, the state (generalised-alpha's rows are those of the
+        balance at t_{n+1-alpha_f}: its reactions are evaluated again at the state)."""
         counters, clock = prob.counters, prob.clock[0]
         integ.full_steps_left = float(self.factors["auto_left"][0])
         if self.kind == TRIANGULATED and counters[policy.NFEV]:  # the walk's last call: the next one starts there
@@ -108,8 +112,8 @@ class Marcher:
         integ.last_residual = float(clock["residual"])
         if clock["t"] != integ.t:
             integ.X, integ.V, integ.A, integ.prediction = prob.X, prob.V, prob.A, prob.prediction
-            integ.residual_rows = prob.rows
-            integ.previous = (float(clock["h_before"]), prob.Xp, prob.Vp)
+            integ.residual_rows = prob.rows if self.scheme[0]["kind"] == BDF2 else None
+            integ.set_memory((float(clock["h_before"]), prob.Xp, prob.Vp))
             integ.t, integ.last_h = float(clock["t"]), float(clock["last_h"])
 
     def run(self, integ, times, ends, fractions, forces):

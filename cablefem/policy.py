@@ -5,8 +5,8 @@ The functions here are plain Python in numba's subset and are never called from 
 ``bind(ops)`` makes a set of them whose calls into the physics go to an ``ops`` module. Two such
 sets run the solver (docs/architecture.md, "The compiled path"):
 
-- ``cablefem.march`` binds them to its compiled ops and compiles them with numba (the BDF2 steps
-  of a line on the compiled kernel, many steps in one call);
+- ``cablefem.march`` binds them to its compiled ops and compiles them with numba (the BDF2 and
+  generalised-alpha steps of a line on the compiled kernel, many steps in one call);
 - ``cablefem.dynamics`` binds them to Python ops (``cablefem.python_ops``) for any integrator and
   either assembly (the compiled kernel per evaluation, or the numpy loads).
 
@@ -35,7 +35,9 @@ only ``prob.settings`` (a ``Settings``) and calls ops for everything else:
     place_ends(prob, k, j, h) -> bool      the prescribed ends at the end of the attempt of h that
                                            ends at the j-th of ``settings.parts`` parts of step k;
                                            False if this path cannot place them there
-    record_stop(prob, h), reactions(prob, forces, k)
+    record_stop(prob, h)
+    reactions(prob, forces, k) -> int      the line's forces on fairlead and anchor after step k into
+                                           forces[k]; != 0: the seabed walk lost a point
 """
 
 import math
@@ -51,8 +53,9 @@ COUNTERS = ("steps", "newton_iterations", "nfev", "njev", "nlu", "rejected", "co
 #: what ``newton`` and ``attempt`` return
 CONVERGED, DIVERGED, LOST = 0, 1, 2
 #: what ``advance`` and ``steps`` return: all taken; Newton failed with the step at its smallest;
-#: an attempt would end where this path cannot place the fairlead; the seabed walk lost a point
-DONE, FAILED, SPLIT, PROJECTION = 0, 1, 2, 3
+#: an attempt would end where this path cannot place the fairlead; the seabed walk lost a point;
+#: (``steps`` only) the step was taken but the walk lost a point in evaluating its reactions
+DONE, FAILED, SPLIT, PROJECTION, REACTIONS = 0, 1, 2, 3, 4
 #: ``Settings.newton``: full Newton, modified (factors kept), "auto" (modified, full after trouble)
 FULL, MODIFIED, SWITCHING = 0, 1, 2
 
@@ -234,13 +237,14 @@ def advance(prob, k, target, first):
 
 def steps(prob, times, forces):
     """Steps to ``times`` (m,) in turn (``advance``), the line's forces on fairlead and anchor after
-    each into ``forces`` (m, 2, 3) (``ops.reactions``). Returns (status, k): DONE with k = m, or the
-    status of step k, which stopped."""
+    each into ``forces`` (m, 2, 3) (``ops.reactions``). Returns (status, k): DONE with k = m, the
+    status of step k, which stopped, or REACTIONS: step k was taken, its forces were not found."""
     for k in range(times.shape[0]):
         status = advance(prob, k, times[k] - ops.time(prob), 0.0)
         if status != DONE:
             return status, k
-        ops.reactions(prob, forces, k)
+        if ops.reactions(prob, forces, k) != 0:
+            return REACTIONS, k
     return DONE, times.shape[0]
 
 

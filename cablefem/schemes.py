@@ -11,24 +11,78 @@ into an integrator's arguments.
 
 import numpy as np
 
-from . import marcher, policy
+from . import march, marcher, policy
 from .dynamics import Integrator
 from .errors import ConvergenceError
 
 
-class BDF2(Integrator):
+class CompiledSteps(Integrator):
+    """An integrator whose attempts and runs of steps go through ``cablefem.march`` (the policy
+    compiled, the seabed projected in the loop) where it evaluates with the compiled kernel on a
+    plane, a depth grid or a triangulated surface; through the Python ops elsewhere, and where the
+    compiled loop stops. The numbers are those of the Python ops to round-off
+    (``tests/test_march.py``, ``tests/test_march_alpha.py``). A subclass names its compiled face:
+    ``compiled_scheme()``, its ``march.SCHEME`` record."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.marcher = marcher.Marcher.for_integrator(self)
+
+    def attempt(self, h):
+        """One attempt of size h: compiled (``cablefem.march``) where it can, in Python where the seabed
+        walk lost a point (the Python projection searches)."""
+        if self.marcher is not None:
+            outcome = self.marcher.attempt(self, h)
+            if outcome == policy.CONVERGED:
+                self.last_h = h  # the step the Python ops asked for (the compiled one is (t + h) - t)
+            if outcome != policy.LOST:
+                return outcome == policy.CONVERGED
+        return super().attempt(h)
+
+    def march(self, times):
+        """Steps to ``times`` in compiled runs (``cablefem.march``); where the compiled loop stops (an
+        attempt it cannot place the ends for, a point the seabed walk lost) that step goes on
+        through the Python ops. Returns the forces (m, 2, 3) on fairlead and anchor."""
+        if self.marcher is None:
+            return super().march(times)
+        times = np.asarray(times, dtype=float)
+        ends, fractions = self.marcher.ends(self, times)
+        forces = np.empty((len(times), 2, 3))
+        k = 0
+        while k < len(times):
+            status, done, stopped = self.marcher.run(self, times[k:], ends[k:], fractions[k:], forces[k:])
+            k += done
+            if status == policy.DONE:
+                break
+            if status == policy.REACTIONS:  # step k taken: its forces from the Python projection
+                forces[k] = self.reactions()
+                k += 1
+                continue
+            try:
+                if status == policy.FAILED:
+                    raise self.too_small(stopped)
+                self.step(times[k] - self.t, first=stopped)
+            except ConvergenceError as error:
+                error.forces = forces[:k]
+                raise
+            forces[k] = self.reactions()
+            k += 1
+        return forces
+
+
+class BDF2(CompiledSteps):
     """Variable-step BDF2 on X and V (desire2023 Sec. 2.1.2), started by one backward-Euler step.
 
-    With the compiled kernel on a plane, a depth grid or a triangulated surface, runs of steps go
-    through ``cablefem.march`` (the policy compiled, the seabed projected in the loop); the
-    numbers are those of the Python ops to round-off."""
+    Compiled where ``CompiledSteps`` says."""
 
     name = "bdf2"
 
     def __init__(self, *args, **kwargs):
-        super().__init__(*args, **kwargs)
         self.previous = None  # (h, X, V) of the step before
-        self.marcher = marcher.Marcher.for_integrator(self)
+        super().__init__(*args, **kwargs)
+
+    def compiled_scheme(self):
+        return (march.BDF2, 0.0, 0.0, 0.0, 0.0)
 
     def coefficients(self, h):
         """(c0, c1, c2) with y' ~ c0 y_{n+1} + c1 y_n + c2 y_{n-1}; backward Euler at the start."""
@@ -66,45 +120,8 @@ class BDF2(Integrator):
         and BDF2 have local errors h^3 X^(3) / 6 and -2 h^3 X^(3) / 9, so LTE = 4/7 (X - P)."""
         return self.tension_error(self.X - 4.0 / 7.0 * (self.X - self.prediction))
 
-    def attempt(self, h):
-        """One attempt of size h: compiled (``cablefem.march``) where it can, in Python where the seabed
-        walk lost a point (the Python projection searches)."""
-        if self.marcher is not None:
-            outcome = self.marcher.attempt(self, h)
-            if outcome == policy.CONVERGED:
-                self.last_h = h  # the step the Python ops asked for (the compiled one is (t + h) - t)
-            if outcome != policy.LOST:
-                return outcome == policy.CONVERGED
-        return super().attempt(h)
 
-    def march(self, times):
-        """Steps to ``times`` in compiled runs (``cablefem.march``); where the compiled loop stops (an
-        attempt it cannot place the ends for, a point the seabed walk lost) that step goes on
-        through the Python ops. Returns the forces (m, 2, 3) on fairlead and anchor."""
-        if self.marcher is None:
-            return super().march(times)
-        times = np.asarray(times, dtype=float)
-        ends, fractions = self.marcher.ends(self, times)
-        forces = np.empty((len(times), 2, 3))
-        k = 0
-        while k < len(times):
-            status, done, stopped = self.marcher.run(self, times[k:], ends[k:], fractions[k:], forces[k:])
-            k += done
-            if status == policy.DONE:
-                break
-            try:
-                if status == policy.FAILED:
-                    raise self.too_small(stopped)
-                self.step(times[k] - self.t, first=stopped)
-            except ConvergenceError as error:
-                error.forces = forces[:k]
-                raise
-            forces[k] = self.reactions()
-            k += 1
-        return forces
-
-
-class GeneralizedAlpha(Integrator):
+class GeneralizedAlpha(CompiledSteps):
     """Generalised-alpha (Chung & Hulbert 1993) with spectral radius ``rho_inf`` at infinite
     frequency: second order, unconditionally stable for linear problems, tunable
     high-frequency damping.
@@ -113,7 +130,12 @@ class GeneralizedAlpha(Integrator):
     stiffness of a line (Kuhl & Crisfield 1999; Erlicher et al. 2002): on a stiff chain
     (EA 5e11 N) pulled taut with omega dt ~ 1e2, rho_inf <= 0.5 stays bounded and rho_inf >=
     0.6 pumps energy until the tension reaches 1e11 N (verification/stability, case 7b).
-    Hence the default 0.5; BDF2 has no such limit."""
+    Hence the default 0.5; BDF2 has no such limit.
+
+    Compiled where ``CompiledSteps`` says, BDF2's loop with its own ``begin``, ``point`` and
+    ``accept`` (``cablefem.march``): Newton's iterates, halvings and numbers are the Python ops'
+    to round-off. The end forces (``reactions``) are M A + G at the state at t_{n+1}, evaluated
+    again after the step (the balance holds at t_{n+1-alpha_f}), on both paths."""
 
     name = "generalized-alpha"
 
@@ -144,6 +166,9 @@ class GeneralizedAlpha(Integrator):
         am, af = self.alpha_m, self.alpha_f
         V1, A1 = self.newmark(X1)
         return (1 - af) * X1 + af * self.X, (1 - af) * V1 + af * self.V, (1 - am) * A1 + am * self.A
+
+    def compiled_scheme(self):
+        return (march.GENERALIZED_ALPHA, self.alpha_m, self.alpha_f, self.gamma, self.beta)
 
     def accept(self, h):
         self.V, self.A = self.newmark(self.X1)

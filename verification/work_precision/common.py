@@ -85,7 +85,7 @@ CABLEFEM_ROWS = {
              (2, 40, 0.005, 1e-4), (1, 80, 0.005, 1e-4), (2, 40, 0.0025, 1e-4), (2, 80, 0.0025, 1e-4),
              (2, 28, 0.02, 1e-4), (1, 113, 0.01, 1e-4), (2, 80, 0.005, 1e-4),
              # generalised-alpha has BDF2's error at twice the step here (rho_inf 0.8-0.95 alike; 1.0
-             # keeps undamped oscillations that grow on P2 x 80) but steps in Python, ~10x BDF2's CPU
+             # keeps undamped oscillations that grow on P2 x 80); compiled, at BDF2's CPU per step
              (1, 113, 0.04, 1e-4, "generalized-alpha", 0.9), (2, 80, 0.02, 1e-4, "generalized-alpha", 0.9)]}
 REFERENCES = {"snap": {"moordyn": (1280, 2e-5, COUPLING_DT), "cablefem": (1, 640, 0.000625, 1e-8)},
               "slow": {"moordyn": (640, 1e-4, 5e-4), "cablefem": (1, 320, 0.0025, 1e-8)}}
