@@ -60,14 +60,14 @@ def run_cablefem_scene(scene):
     from cablefem.dynamics import INTEGRATORS
     from cablefem.errors import ConvergenceError
     from cablefem.run import StepControl, boundary_path, build_system, start_states
+    from cablefem.schemes import integrator_options
 
     solver, line = scene.solver, scene.lines[0]
     start = time.perf_counter()
     system = build_system(scene, line)
     (X0,), _ = start_states(scene, systems=[system])
-    options = {"rho_inf": solver.rho_inf} if solver.integrator == "generalized-alpha" else {}
     integ = INTEGRATORS[solver.integrator](system, X0, boundary_path(scene, line), dt=solver.dt,
-                                           tolerance=solver.tolerance, newton=solver.newton, **options)
+                                           **integrator_options(solver))
     control = StepControl(solver, solver.dt)
     times, tensions = [integ.t], [np.linalg.norm(integ.reactions()[0])]
     try:
