@@ -162,8 +162,11 @@ def evaluate(prob, tangent, held):
 
 @njit(cache=True, inline="always", _nrt=False)
 def finish(prob):
-    """The reactions need only the end rows: evaluate the two end elements."""
-    return _assemble(prob, policy.FLAG[0], policy.FLAG[0], prob.end_elements)
+    """The rows at the converged point: the reactions need only the two end elements; a line whose
+    loads keep history (its commits not empty) evaluates them all, so that the history committed is
+    the converged point's, as on the Python ops (whose ``finish`` evaluates everything)."""
+    keeps = prob.commits[0][0].shape[0] > 0 or prob.commits[1][0].shape[0] > 0
+    return _assemble(prob, policy.FLAG[0], policy.FLAG[0], prob.all_elements if keeps else prob.end_elements)
 
 
 @njit(cache=True, inline="always", _nrt=False)
