@@ -54,18 +54,15 @@ class CompiledSteps(Integrator):
             k += done
             if status == policy.DONE:
                 break
-            if status == policy.REACTIONS:  # step k taken: its forces from the Python projection
-                forces[k] = self.reactions()
-                k += 1
-                continue
-            try:
-                if status == policy.FAILED:
-                    raise self.too_small(stopped)
-                self.step(times[k] - self.t, first=stopped)
-            except ConvergenceError as error:
-                error.forces = forces[:k]
-                raise
-            forces[k] = self.reactions()
+            if status != policy.REACTIONS:  # REACTIONS: step k was taken, only its forces are missing
+                try:
+                    if status == policy.FAILED:
+                        raise self.too_small(stopped)
+                    self.step(times[k] - self.t, first=stopped)
+                except ConvergenceError as error:
+                    error.forces = forces[:k]
+                    raise
+            forces[k] = self.reactions()  # the Python projection searches where the walk lost a point
             k += 1
         return forces
 
