@@ -26,6 +26,7 @@ from collections import namedtuple
 
 import numpy as np
 from numba import literal_unroll, njit
+from numba import uint64 as _index
 from numba.core.errors import NumbaExperimentalFeatureWarning
 
 from .loads import catalog
@@ -99,7 +100,7 @@ def work(nloc):
                 np.zeros((LAYOUT.vectors, 3)), np.zeros((nloc, 3)), np.zeros((nloc, 3, nloc, 3)))
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)
 def full_point(ctx, p, old, new, state, hold, out, M, u):
     """The full-point loads of the catalog the line has (``ctx.full_loads``), in order, into
     ``out`` (f, A, B zeroed first)."""
@@ -174,7 +175,7 @@ def _kinematics(ctx, mesh, X, V, Acc, e, g):
     v[:] = 0.0
     acc[:] = 0.0
     for l in range(mesh.dofs.shape[1]):
-        i = mesh.dofs[e, l]
+        i = _index(mesh.dofs[e, l])
         for a in range(3):
             r[a] += mesh.phi[l, e, g] * X[i, a]
             dr[a] += mesh.dphi[l, e, g] * X[i, a]
@@ -231,9 +232,11 @@ def assemble(mesh, bed, pts, work, state, factors, jac, held, rows, band, elemen
     for k in range(pts.reduced_loads.shape[0]):
         ctx.reduced_loads[k] = pts.reduced_loads[k]
     nq, nr = mesh.dx.shape[1], mesh.rdx.shape[1]
-    for e in elements:
+    for element in elements:
+        e = _index(element)  # unsigned: no wrap-around fix-up on the many accesses by e (banded.py)
         Re[:] = 0.0
-        Ke[:] = 0.0
+        if jac:
+            Ke[:] = 0.0
         p = pts.params[e]
         for g in range(nq):
             _kinematics(ctx, mesh, X, V, Acc, e, g)
@@ -249,7 +252,7 @@ def assemble(mesh, bed, pts, work, state, factors, jac, held, rows, band, elemen
         _scatter(Re, Ke, mesh, e, jac, rows, band)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, inline="always", _nrt=False)  # a call would copy the mesh's arrays per point
 def _add_full(Re, Ke, mesh, out, ctx, e, g, jac):
     """A full point's force and blocks, and the inertia m a, into the element's rows and matrix."""
     w = mesh.dx[e, g]
@@ -276,7 +279,7 @@ def _reduced_kinematics(ctx, mesh, X, V, e, g):
     dr[:] = 0.0
     dv[:] = 0.0
     for l in range(mesh.dofs.shape[1]):
-        i = mesh.dofs[e, l]
+        i = _index(mesh.dofs[e, l])
         for a in range(3):
             dr[a] += mesh.rdphi[l, e, g] * X[i, a]
             dv[a] += mesh.rdphi[l, e, g] * V[i, a]
@@ -304,21 +307,21 @@ def _scatter(Re, Ke, mesh, e, jac, rows, band):
     nloc = mesh.dofs.shape[1]
     kl, ku, lo, hi = mesh.kl, mesh.ku, mesh.lo, mesh.hi
     for l in range(nloc):
-        i = mesh.dofs[e, l]
+        i = _index(mesh.dofs[e, l])
         for a in range(3):
             rows[i, a] += Re[l, a]
         pi = mesh.position[i]
         if not jac or pi < lo or pi > hi:
             continue
         for mm in range(nloc):
-            pj = mesh.position[mesh.dofs[e, mm]]
+            pj = mesh.position[_index(mesh.dofs[e, mm])]
             if pj < lo or pj > hi:
                 continue
             for a in range(3):
                 for b in range(3):
                     row = 3 * (pi - lo) + a
                     col = 3 * (pj - lo) + b
-                    band[kl + ku + row - col, col] += Ke[l, a, mm, b]
+                    band[_index(kl + ku + row - col), _index(col)] += Ke[l, a, mm, b]
 
 
 @njit(cache=True, _nrt=False)

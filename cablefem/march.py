@@ -22,6 +22,7 @@ from collections import namedtuple
 
 import numpy as np
 from numba import njit
+from numba import uint64 as _index  # an unsigned index: no wrap-around fix-up (cablefem.banded)
 
 from . import kernels, policy
 from .banded import lu_factor, lu_solve
@@ -172,7 +173,8 @@ def finish(prob):
 @njit(cache=True, inline="always", _nrt=False)
 def norm(prob):
     total = 0.0
-    for i in prob.free_nodes:
+    for node in prob.free_nodes:
+        i = _index(node)
         for a in range(3):
             total += prob.rows[i, a] * prob.rows[i, a]
     return np.sqrt(total) / prob.scale
@@ -197,8 +199,9 @@ def increment(prob, refactor):
         counters[policy.NLU] += 1
         key.v_x = clock.v_x
     for j in range(prob.free_order.shape[0]):
+        i = _index(prob.free_order[j])
         for a in range(3):
-            rhs[3 * j + a] = -prob.rows[prob.free_order[j], a]
+            rhs[3 * j + a] = -prob.rows[i, a]
     lu_solve(prob.lu, rhs.shape[0], mesh.kl, mesh.ku, prob.ipiv, rhs)
     size = _largest(rhs)
     _copy_flat(prob.step, rhs)
@@ -220,8 +223,9 @@ def take_step(prob, fraction):
     """X1 = base + fraction step on the free unknowns (step in band order)."""
     _copy_rows(prob.X1, prob.base)
     for j in range(prob.free_order.shape[0]):
+        i = _index(prob.free_order[j])
         for a in range(3):
-            prob.X1[prob.free_order[j], a] += fraction * prob.step[3 * j + a]
+            prob.X1[i, a] += fraction * prob.step[3 * j + a]
 
 
 @njit(cache=True, inline="always", _nrt=False)
