@@ -12,13 +12,14 @@ child would compile every kernel under valgrind (hours). The first call compiles
 variant natively (~1-2 min), then the child runs (~1 min). To compare commits, run it in a
 worktree of each (``PYTHONPATH=<worktree> python -m benchmarks.step_instructions``).
 
-    python -m benchmarks.step_instructions [--case steep dynamic 1 40 0.01] [--duration 1.0]
+    python -m benchmarks.step_instructions [--case steep dynamic 1 40 0.01] [--duration 1.0] [--keep FILE]
 """
 
 import argparse
 import ctypes
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -61,8 +62,9 @@ def child(library, case, duration):
     run_case(case, duration)
 
 
-def count(case, duration):
-    """Compile the generic kernels, then run ``child`` under callgrind: instructions (int)."""
+def count(case, duration, keep=None):
+    """Compile the generic kernels, then run ``child`` under callgrind: instructions (int). ``keep``:
+    a path to copy callgrind's output to (for ``callgrind_annotate``)."""
     env = dict(os.environ, NUMBA_CPU_NAME="generic")
     with tempfile.TemporaryDirectory(prefix="cablefem-callgrind-") as work:
         library = Path(work) / "libtoggle.so"
@@ -75,6 +77,8 @@ def count(case, duration):
                               + ["--child", str(library), "--duration", str(duration)] + the_case,
                               env=env, capture_output=True, text=True)
         found = re.search(r"Collected : (\d+)", done.stderr)
+        if keep:
+            shutil.copyfile(f"{work}/out", keep)
         if done.returncode != 0 or not found:
             raise SystemExit(f"callgrind failed ({done.returncode}): {done.stderr[-2000:]}")
         return int(found.group(1))
@@ -85,6 +89,7 @@ def main(argv=None):
     parser.add_argument("--case", nargs=5, default=["steep", "dynamic", "1", "40", "0.01"],
                         metavar=("SEABED", "MOTION", "ORDER", "ELEMENTS", "DT"))
     parser.add_argument("--duration", type=float, default=1.0, help="simulated seconds counted")
+    parser.add_argument("--keep", help="copy callgrind's output here (read it with callgrind_annotate)")
     parser.add_argument("--child", help=argparse.SUPPRESS)
     parser.add_argument("--warm", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
@@ -94,7 +99,7 @@ def main(argv=None):
         return child(args.child, args.case, args.duration)
     import cablefem
 
-    instructions = count(args.case, args.duration)
+    instructions = count(args.case, args.duration, args.keep)
     print(f"{' '.join(args.case)}, {args.duration:g} s: {instructions:,} instructions in the compiled steps "
           f"({Path(cablefem.__file__).parent})")
 
