@@ -111,3 +111,15 @@ def test_signals_are_held_while_files_are_written_then_raised():
             os.kill(os.getpid(), signal.SIGINT)
     finally:
         signal.signal(signal.SIGINT, ignored)
+
+
+def test_a_frame_of_lines_alone_has_no_network_cell_data():
+    # docs/outputs.md: cell data "network" tells a network's points and bodies from its lines, so a
+    # frame of lines alone carries only "line" (an all-zero array in every frame cost ~4 % of a
+    # frame's writing); with a point, "network" marks its vertex cell
+    lines = polyline_mesh([LINE, LINE])
+    assert set(lines.cell_data) == {"line"}
+    assert np.concatenate(lines.cell_data["line"]).tolist() == [0, 1]
+    network = polyline_mesh([LINE, LINE], points=[(1, -1)])
+    assert np.concatenate(network.cell_data["network"]).tolist() == [0, 0, 1]
+    assert network.cells[1].data.tolist() == [[3]]  # the second line's last point

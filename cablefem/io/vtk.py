@@ -28,8 +28,8 @@ def polyline_mesh(lines, points=(), bodies=()):
     points: (line index, row) of the network's named points, each a "vertex" cell on that row of
     its line; bodies: (reference point (3,), [(line index, row)]) of each body, drawn as segments
     from its reference point (a point added, its point data zero) to the rows where its points
-    are. Cell data "network": 0 for a line's segments, 1 for a point, 2 for a body's segments
-    ("line" is -1 on a body's).
+    are. Cell data "network" (only with points or bodies): 0 for a line's segments, 1 for a point,
+    2 for a body's segments ("line" is -1 on a body's).
     """
     coordinates, cells, line_index, data = [], [], [], {}
     offset, starts = 0, []
@@ -63,8 +63,10 @@ def polyline_mesh(lines, points=(), bodies=()):
         blocks.append(("line", np.array(edges)))
         cell_lines.append(np.full(len(edges), -1))
         kinds.append(np.full(len(edges), 2))
-    return meshio.Mesh(np.concatenate(coordinates), blocks, point_data=point_data,
-                       cell_data={"line": cell_lines, "network": kinds})
+    cell_data = {"line": cell_lines}
+    if at or edges:  # lines alone: no cell data that would be all zeros in every frame
+        cell_data["network"] = kinds
+    return meshio.Mesh(np.concatenate(coordinates), blocks, point_data=point_data, cell_data=cell_data)
 
 
 class TimeSeriesWriter:
