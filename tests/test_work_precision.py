@@ -103,7 +103,7 @@ def test_error_is_rms_over_the_window_relative_to_the_mean():
 
 
 def test_common_study_row_runs_its_integrator_and_rho_inf():
-    # verification/work_precision/common: a row's integrator and rho_inf reach the run. The
+    # verification/work_precision/common: a row's integrator, rho_inf and Newton reach the run. The
     # generalised-alpha row equals, to the bit, a run of the aligned scene with [solver]
     # integrator "generalized-alpha" and rho_inf 0.9, and differs from the BDF2 row and from the
     # row at rho_inf 0.8 (deterministic runs: any difference is the setting, not noise).
@@ -119,8 +119,33 @@ def test_common_study_row_runs_its_integrator_and_rho_inf():
     scene = aligned_scene("slow", 1, 14, 0.17, tolerance=1e-4)
     scene.solver = replace(scene.solver, integrator="generalized-alpha", rho_inf=0.9)
     direct = run_cablefem_scene(scene)
-    runs = {row: cablefem_row("slow", row)[0]["tension"] for row in (bdf2, alpha, other)}
+    auto = Row(1, 14, 0.17, 1e-4, "generalized-alpha", 0.9, "auto")
+    assert auto.label() == "P1 x 14, gen-a 0.9, dt 0.17, auto Newton"
+    runs = {row: cablefem_row("slow", row)[0]["tension"] for row in (bdf2, alpha, other, auto)}
     assert np.array_equal(runs[alpha], direct["tension"])
     mean = np.mean(direct["tension"])
     assert np.max(np.abs(runs[bdf2] - runs[alpha])) > 1e-4 * mean
     assert np.max(np.abs(runs[other] - runs[alpha])) > 1e-6 * mean
+    # the row's Newton reaches the run too ("full" unless it says; "auto" keeps LU factors)
+    scene.solver = replace(scene.solver, newton="auto")
+    assert np.array_equal(runs[auto], run_cablefem_scene(scene)["tension"])
+    assert not np.array_equal(runs[auto], runs[alpha])
+
+
+def test_time_error_split_puts_a_ringing_in_its_band():
+    # verification/work_precision/time_error: a run that differs from the fine one by a 1.5 Hz
+    # ringing of 1 % of the mean has an RMS difference of 1 % / sqrt(2) over the window, all of
+    # it in the 1-2 Hz band; the contact frequency is the closed form sqrt(k d / (m + m_a)) / 2 pi
+    from cablefem.scenes import table5_chain
+    from verification.work_precision.time_error import contact_frequency, split
+
+    t = np.arange(0.0, 40.0, 0.01)
+    fine = {"t": t, "tension": np.full_like(t, 2.0e6)}
+    ringing = {"t": t[::2], "tension": 2.0e6 * (1.0 + 0.01 * np.sin(2 * np.pi * 1.5 * t[::2]))}
+    found = split(ringing, fine, 20.0)
+    assert found["rms"] == pytest.approx(0.01 / np.sqrt(2), rel=1e-3)
+    shares = {tuple(b["band_Hz"]): b["share"] for b in found["bands"]}
+    assert shares[(1.0, 2.0)] == pytest.approx(1.0, abs=1e-6)
+    chain = table5_chain()
+    mass = chain.mass + chain.Ca_normal * 1025.0 * np.pi * chain.diameter ** 2 / 4
+    assert contact_frequency() == pytest.approx(np.sqrt(3.0e5 * chain.diameter / mass) / (2 * np.pi), rel=1e-12)

@@ -57,7 +57,8 @@ MOORDYN_ROWS = {"snap": [(20, 5e-3), (40, 2.5e-3), (80, 2.5e-3), (160, 2e-3), (3
 
 class Row(NamedTuple):
     """One cablefem row: element order and count, step dt [s], Newton's relative tolerance, the
-    integrator (``cablefem.dynamics.INTEGRATORS``) and generalised-alpha's rho_inf (unused by BDF2)."""
+    integrator (``cablefem.dynamics.INTEGRATORS``), generalised-alpha's rho_inf (unused by BDF2) and
+    ``[solver] newton`` ("full", as the aligned study runs; "auto", the scenes' default)."""
 
     order: int
     elements: int
@@ -65,15 +66,17 @@ class Row(NamedTuple):
     tolerance: float = 1e-4
     integrator: str = "bdf2"
     rho_inf: float = 0.5
+    newton: str = "full"
 
     def label(self):
         kind = f"gen-a {self.rho_inf:g}, " if self.integrator == "generalized-alpha" else ""
-        return f"P{self.order} x {self.elements}, {kind}dt {self.dt:g}"
+        newton = "" if self.newton == "full" else f", {self.newton} Newton"
+        return f"P{self.order} x {self.elements}, {kind}dt {self.dt:g}{newton}"
 
 
 #: cablefem's rows (``Row``'s fields; the first four for BDF2): the study's Pareto rows and finer ones
 CABLEFEM_ROWS = {
-    "snap": [(1, 14, 0.16, 1e-4), (2, 7, 0.16, 1e-4), (2, 10, 0.16, 1e-4), (1, 40, 0.16, 1e-4), (1, 80, 0.08, 1e-4),
+    "snap": [(1, 10, 0.25, 1e-4), (1, 10, 0.2, 1e-4), (1, 14, 0.16, 1e-4), (2, 7, 0.16, 1e-4), (2, 10, 0.16, 1e-4), (1, 40, 0.16, 1e-4), (1, 80, 0.08, 1e-4),
              (2, 40, 0.08, 1e-4), (1, 160, 0.04, 1e-4), (1, 160, 0.02, 1e-4), (1, 226, 0.04, 1e-4),
              (1, 226, 0.02, 1e-4), (1, 320, 0.04, 1e-4), (2, 113, 0.02, 1e-4), (2, 160, 0.02, 1e-4),
              (1, 320, 0.02, 1e-4), (1, 320, 0.01, 1e-4), (2, 160, 0.01, 1e-4), (1, 640, 0.005, 1e-4)],
@@ -90,7 +93,20 @@ CABLEFEM_ROWS = {
              (1, 113, 0.04, 1e-4, "generalized-alpha", 0.9), (2, 80, 0.02, 1e-4, "generalized-alpha", 0.9),
              *((o, n, dt, 1e-4, "generalized-alpha", 0.9)
                for o, n, dt in ((1, 40, 0.02), (2, 28, 0.02), (1, 57, 0.02), (2, 40, 0.02), (1, 80, 0.02),
-                                (2, 57, 0.01), (1, 80, 0.01), (2, 80, 0.01)))]}
+                                (2, 57, 0.01), (1, 80, 0.01), (2, 80, 0.01))),
+             # "auto" Newton (the scenes' default: modified Newton, its LU kept across steps, full
+             # Newton for a while after trouble) at the same settings: in slow surge the tangent
+             # changes slowly and the same runs take ~0.7x the instructions of full Newton (P1 x 40,
+             # gen-a 0.9, dt 0.02: 0.93 G against 1.33 G, the same error); in snap it costs (P2 x 113,
+             # dt 0.02: 1.8x the CPU), so the snap rows stay in full Newton
+             *((o, n, dt, 1e-4, "generalized-alpha", 0.9, "auto")
+               for o, n, dt in ((1, 113, 0.04), (1, 40, 0.02), (2, 28, 0.02), (1, 57, 0.02), (2, 40, 0.02),
+                                (1, 80, 0.02), (2, 80, 0.02), (2, 57, 0.01), (1, 80, 0.01), (2, 80, 0.01),
+                                (1, 40, 0.025), (1, 48, 0.025), (1, 57, 0.025), (2, 57, 0.02), (1, 113, 0.02),
+                                (2, 80, 0.015), (1, 72, 0.016), (1, 80, 0.016), (1, 90, 0.0125))),
+             *((o, n, dt, 1e-4, "bdf2", 0.5, "auto")
+               for o, n, dt in ((1, 57, 0.085), (1, 80, 0.04), (2, 40, 0.01), (1, 80, 0.01), (2, 80, 0.01),
+                                (2, 80, 0.005)))]}
 REFERENCES = {"snap": {"moordyn": (1280, 2e-5, COUPLING_DT), "cablefem": (1, 640, 0.000625, 1e-8)},
               "slow": {"moordyn": (640, 1e-4, 5e-4), "cablefem": (1, 320, 0.0025, 1e-8)}}
 REPEATS = ((0.2, 5), (1.0, 3), (3.0, 2))
@@ -146,7 +162,7 @@ def cablefem_row(motion, row, friction=False):
     ``row`` (a ``Row``): (t, tension) dict and its CPU seconds."""
     scene = (friction_scene if friction else aligned_scene)(motion, row.order, row.elements, row.dt,
                                                             tolerance=row.tolerance)
-    scene.solver = replace(scene.solver, integrator=row.integrator, rho_inf=row.rho_inf)
+    scene.solver = replace(scene.solver, integrator=row.integrator, rho_inf=row.rho_inf, newton=row.newton)
     begin = time.process_time()
     run = run_cablefem_scene(scene)
     return run, time.process_time() - begin
