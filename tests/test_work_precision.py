@@ -135,9 +135,10 @@ def test_common_study_row_runs_its_integrator_and_rho_inf():
 def test_time_error_split_puts_a_ringing_in_its_band():
     # verification/work_precision/time_error: a run that differs from the fine one by a 1.5 Hz
     # ringing of 1 % of the mean has an RMS difference of 1 % / sqrt(2) over the window, all of
-    # it in the 1-2 Hz band; the contact frequency is the closed form sqrt(k d / (m + m_a)) / 2 pi
+    # it in the 1-2 Hz band; the two candidate frequencies are their closed forms, the contact's
+    # sqrt(k d / (m + m_a)) / 2 pi and the whole line's first axial mode sqrt(EA / m) / 2 L
     from cablefem.scenes import table5_chain
-    from verification.work_precision.time_error import contact_frequency, split
+    from verification.work_precision.time_error import axial_frequency, contact_frequency, split
 
     t = np.arange(0.0, 40.0, 0.01)
     fine = {"t": t, "tension": np.full_like(t, 2.0e6)}
@@ -149,3 +150,6 @@ def test_time_error_split_puts_a_ringing_in_its_band():
     chain = table5_chain()
     mass = chain.mass + chain.Ca_normal * 1025.0 * np.pi * chain.diameter ** 2 / 4
     assert contact_frequency() == pytest.approx(np.sqrt(3.0e5 * chain.diameter / mass) / (2 * np.pi), rel=1e-12)
+    assert contact_frequency(stiffness_factor=4.0) == pytest.approx(2.0 * contact_frequency(), rel=1e-12)
+    assert axial_frequency() == pytest.approx(np.sqrt(3.15e9 / 835.4) / (2 * 635.0), rel=1e-12)
+    assert axial_frequency(4.0) == pytest.approx(2.0 * axial_frequency(), rel=1e-12)
