@@ -31,7 +31,7 @@ if __package__ in (None, ""):
 from cablefem.line import Line, Segment  # noqa: E402
 from cablefem.scenes import flume_scene, table5_chain  # noqa: E402
 from cablefem.study import write_json  # noqa: E402
-from validation.moordyn_aligned.run import WINDOW, aligned_scene, spectrum_bands  # noqa: E402
+from validation.moordyn_aligned.run import WINDOW, aligned_scene, compare, spectrum_bands  # noqa: E402
 from verification.work_precision.runs import run_cablefem_scene  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
@@ -71,13 +71,11 @@ def run(order, elements, dt, stiffness_factor=1.0, ea_factor=1.0):
 
 
 def split(run_, fine, t_from):
-    """RMS of run - fine over t >= t_from relative to fine's mean, and its shares per band."""
+    """RMS of run - fine over t >= t_from relative to fine's mean (the studies' ``compare``), and
+    the difference's shares per frequency band."""
     on = np.interp(run_["t"], fine["t"], fine["tension"])
-    keep = run_["t"] >= t_from
-    mean = float(on[keep].mean())
-    diff = {"t": run_["t"], "tension": (run_["tension"] - on) / mean}
-    return {"rms": float(np.sqrt(np.mean(diff["tension"][keep] ** 2))),
-            "bands": spectrum_bands(diff, t_from, EDGES)}
+    diff = {"t": run_["t"], "tension": run_["tension"] - on}
+    return {"rms": compare(run_, fine, t_from)["rms"], "bands": spectrum_bands(diff, t_from, EDGES)}
 
 
 def main(argv=None):
