@@ -118,6 +118,7 @@ class Integrator:
         self.newton_mode = {"full": policy.FULL, "modified": policy.MODIFIED}.get(
             newton, policy.SWITCHING if self.fused is not None else policy.MODIFIED)
         self.full_steps_left = 0  # "auto": attempts still to run in full Newton
+        self.contraction = -1.0  # the kept factors' contraction estimate (policy.newton), < 0: none
         # positions converge when the force their error makes, EA / h * dx, is below the
         # tolerance times the weight of an element: dx <= tol w h^2 / EA (floored at round-off)
         h = float(np.min(np.diff(fem.mesh.p[0])))

@@ -44,7 +44,7 @@ CLOCK = np.dtype([("t", "f8"), ("h_before", "f8"), ("last_h", "f8"), ("stopped",
                   ("v_x", "f8"), ("a_x", "f8"), ("g_x", "f8"), ("h", "f8")])
 #: what modified Newton's kept factors belong to (one record, kept between runs): the v_x of the
 #: factors (NaN: none; a_x and g_x follow from it) and "auto"'s full-Newton attempts still to run
-FACTORS = np.dtype([("v_x", "f8"), ("auto_left", "f8")])
+FACTORS = np.dtype([("v_x", "f8"), ("auto_left", "f8"), ("contraction", "f8")])
 #: everything the compiled ops read and write (``Marcher.problem``): the kernel's records; the state
 #: X, V, A, the step before's Xp, Vp, the last predictor and the rows M A + G (N, 3), updated in
 #: place; the trial X1, the velocity and acceleration V1, A1 where the loads are evaluated (BDF2: at
@@ -329,6 +329,16 @@ def auto_left(prob):
 @njit(cache=True, inline="always", _nrt=False)
 def set_auto_left(prob, value):
     prob.factors[0].auto_left = value
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def contraction(prob):
+    return prob.factors[0].contraction
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def set_contraction(prob, value):
+    prob.factors[0].contraction = value
 
 
 @njit(cache=True, inline="always", _nrt=False)

@@ -91,6 +91,7 @@ class Marcher:
         clock = np.zeros(1, CLOCK)
         clock[0] = (integ.t, h_before, integ.last_h or 0.0, 0.0, np.nan, np.nan, np.nan, np.nan, np.nan)
         self.factors["auto_left"] = integ.full_steps_left  # "auto" Newton's state, shared with the Python ops
+        self.factors["contraction"] = integ.contraction
         ev, fem = self.ev, integ.fem
         return Problem(self.settings, ev.mesh, self.bed, ev.points, ev.work, self.projector(integ.X),
                        fem.free_dofs.astype(np.int64), ev.free_order, ev.elements, self.end_elements,
@@ -106,6 +107,7 @@ class Marcher:
         balance at t_{n+1-alpha_f}: its reactions are evaluated again at the state)."""
         counters, clock = prob.counters, prob.clock[0]
         integ.full_steps_left = float(self.factors["auto_left"][0])
+        integ.contraction = float(self.factors["contraction"][0])
         if self.kind == TRIANGULATED and counters[policy.NFEV]:  # the walk's last call: the next one starts there
             self.seabed.walk_end(prob.projector.start)
         integ.counters += counters

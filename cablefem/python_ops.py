@@ -101,6 +101,14 @@ def set_auto_left(prob, value):
     prob.full_steps_left = value
 
 
+def contraction(prob):
+    return prob.contraction
+
+
+def set_contraction(prob, value):
+    prob.contraction = value
+
+
 def count(prob, counter, amount):
     prob.counters[counter] += amount
     return int(prob.counters[counter])
