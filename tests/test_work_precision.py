@@ -153,3 +153,23 @@ def test_time_error_split_puts_a_ringing_in_its_band():
     assert contact_frequency(stiffness_factor=4.0) == pytest.approx(2.0 * contact_frequency(), rel=1e-12)
     assert axial_frequency() == pytest.approx(np.sqrt(3.15e9 / 835.4) / (2 * 635.0), rel=1e-12)
     assert axial_frequency(4.0) == pytest.approx(2.0 * axial_frequency(), rel=1e-12)
+
+
+def test_common_study_repeats_rows_in_passes_over_all_of_them():
+    # verification/work_precision/common: each row runs once, then its repeats (REPEATS by its first
+    # time) come in passes over every row, so a slow minute of the machine meets all rows alike;
+    # the least CPU time is kept with the first run's result
+    from verification.work_precision.common import REPEATS, interleaved_least_cpu, repeats
+
+    calls, times = [], {"a": [0.1, 0.05, 0.3, 0.2, 0.08], "b": [2.0, 1.5], "c": [5.0]}
+
+    def row(name):
+        def run():
+            calls.append(name)
+            return f"result {name}", times[name][sum(1 for c in calls if c == name) - 1]
+        return run
+
+    found = interleaved_least_cpu([row("a"), row("b"), row("c")])
+    assert [repeats(0.1), repeats(2.0), repeats(5.0)] == [5, 2, 1] and REPEATS[0] == (0.2, 5)
+    assert calls == ["a", "b", "c", "a", "b", "a", "a", "a"]
+    assert found == [("result a", 0.05), ("result b", 1.5), ("result c", 5.0)]

@@ -10,13 +10,14 @@ surge) RMS. For each MoorDyn error level (its runs at the work-precision study's
 the cheapest cablefem run at least as accurate against the same reference gives the time ratio.
 
 cablefem's rows (``Row``) are BDF2 unless a row names generalised-alpha and its rho_inf (labels
-"P1 x 113, gen-a 0.9, dt 0.04").
+"P1 x 113, gen-a 0.9, dt 0.04"), in full Newton at tolerance 1e-4 unless the label names another.
 
 Times are CPU seconds of the process (``time.process_time``), not wall time: the runs were made on
 a shared machine whose load made wall times vary by 3-10x. cablefem's: statics, set-up and steps,
 warm (numba's kernels loaded); MoorDyn's: its ``Create``, ``Init`` and ``Step`` calls only (the
 peer's Python bookkeeping left out, in MoorDyn's favour), its initial-condition solve skipped
-(TmaxIC 0), coupled every 0.01 s as in the study. Cheap runs are repeated and the least time kept.
+(TmaxIC 0), coupled every 0.01 s as in the study. Cheap runs are repeated and the least time kept;
+the repeats come in passes over all rows of a motion, both codes' (``interleaved_least_cpu``).
 
 With ``--friction`` the same study with the seabed friction of validation/moordyn and the
 work-precision study (``common_friction``): references MoorDyn-C at 1280 segments, dtM 2e-5 s
@@ -33,6 +34,7 @@ import contextlib
 import sys
 import time
 from dataclasses import replace
+from functools import partial
 from pathlib import Path
 from typing import NamedTuple
 
@@ -124,13 +126,23 @@ REFERENCES = {"snap": {"moordyn": (1280, 2e-5, COUPLING_DT), "cablefem": (1, 640
 REPEATS = ((0.2, 5), (1.0, 3), (3.0, 2))
 
 
-def least_cpu(run):
-    """``run()`` -> (result, cpu seconds), repeated per ``REPEATS``, the least CPU time kept."""
-    result, cpu = run()
-    count = next((n for limit, n in REPEATS if cpu < limit), 1)
-    for _ in range(count - 1):
-        cpu = min(cpu, run()[1])
-    return result, cpu
+def repeats(cpu):
+    """How many times a row whose first run took ``cpu`` seconds runs (``REPEATS``)."""
+    return next((n for limit, n in REPEATS if cpu < limit), 1)
+
+
+def interleaved_least_cpu(runs):
+    """``runs``: callables -> (result, cpu seconds). Each runs once, then again in passes over all of
+    them until it has run as often as ``REPEATS`` says: a row's repeats are spread over the whole
+    study, so that this machine's speed, which drifts by 1.5x over minutes, moves every row alike
+    rather than the rows that happened to run in a slow minute. Returns [(result, least cpu)]."""
+    found = [run() for run in runs]
+    counts = [repeats(cpu) for _, cpu in found]
+    for k in range(1, max(counts, default=1)):
+        for i, run in enumerate(runs):
+            if counts[i] > k:
+                found[i] = (found[i][0], min(found[i][1], run()[1]))
+    return found
 
 
 @contextlib.contextmanager
@@ -218,13 +230,14 @@ def run(cache=None, log=print, friction=False):
     warm_up()
     results = {"clock": "process CPU seconds", "friction": friction, "references": {}}
     for motion in ("slow", "snap"):
-        series = {"moordyn": [], "cablefem": []}
-        for segments, dtM in MOORDYN_ROWS[motion]:
-            found, cpu = least_cpu(lambda: moordyn_row(motion, segments, dtM, friction))
-            series["moordyn"].append((f"{segments} segments, dtM {dtM:g}", cpu, found))
-        for row in (Row(*r) for r in (CABLEFEM_ROWS_FRICTION if friction else CABLEFEM_ROWS)[motion]):
-            found, cpu = least_cpu(lambda: cablefem_row(motion, row, friction))
-            series["cablefem"].append((row.label(), cpu, found))
+        md_rows = MOORDYN_ROWS[motion]
+        cf_rows = [Row(*r) for r in (CABLEFEM_ROWS_FRICTION if friction else CABLEFEM_ROWS)[motion]]
+        timed = interleaved_least_cpu(
+            [partial(moordyn_row, motion, segments, dtM, friction) for segments, dtM in md_rows]
+            + [partial(cablefem_row, motion, row, friction) for row in cf_rows])
+        series = {"moordyn": [(f"{segments} segments, dtM {dtM:g}", cpu, found)
+                              for (segments, dtM), (found, cpu) in zip(md_rows, timed)],
+                  "cablefem": [(row.label(), cpu, found) for row, (found, cpu) in zip(cf_rows, timed[len(md_rows):])]}
         ref, refs = references(motion, friction, cache)
         t_from = WINDOW[motion]
         results["references"][motion] = {"moordyn": ref["moordyn"], "cablefem": ref["cablefem"],
