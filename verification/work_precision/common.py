@@ -113,8 +113,8 @@ CABLEFEM_ROWS = {
                                 (2, 80, 0.005))),
              # modified Newton with a looser tolerance, 1e-3: here the error moves by < 1 % of itself
              # from 1e-4 (P1 x 80, dt 0.0125: 0.0723 against 0.0725 %) while a step takes fewer
-             # iterations, most ending after the first (policy.newton's first-iteration stop); rho_inf
-             # 0.7 damps the high-frequency ringing that the first iterations leave (1.13 iterations
+             # iterations, many ending after the first (policy.newton's first-iteration stop); rho_inf
+             # 0.7 damps the high-frequency ringing that the first iterations leave (1.15 iterations
              # a step against 1.29 at 0.9) and costs little accuracy at dt <= 0.014
              *((o, n, dt, 1e-3, "generalized-alpha", rho, "modified")
                for o, n, dt, rho in ((1, 48, 0.03, 0.7), (1, 48, 0.03, 0.9), (1, 48, 0.025, 0.7), (1, 57, 0.03, 0.7),
