@@ -37,6 +37,12 @@ class CompiledSteps(Integrator):
                 self.last_h = h  # the step the Python ops asked for (the compiled one is (t + h) - t)
             if outcome != policy.LOST:
                 return outcome == policy.CONVERGED
+            # the two paths keep factors of their own: a contraction measured with one set says
+            # nothing of the other's (policy.newton's first-iteration stop), on the way in or out
+            self.contraction = -1.0
+            converged = super().attempt(h)
+            self.contraction = -1.0
+            return converged
         return super().attempt(h)
 
     def march(self, times):

@@ -112,7 +112,7 @@ CABLEFEM_ROWS = {
                for o, n, dt in ((1, 57, 0.085), (1, 80, 0.04), (2, 40, 0.01), (1, 80, 0.01), (2, 80, 0.01),
                                 (2, 80, 0.005))),
              # modified Newton with a looser tolerance, 1e-3: here the error moves by < 1 % of itself
-             # from 1e-4 (P1 x 80, dt 0.0125: 0.0723 against 0.0725 %) while a step takes fewer
+             # from 1e-4 (P1 x 80, gen-a 0.9, dt 0.0125: 0.0723 against 0.0725 %) while a step takes fewer
              # iterations, many ending after the first (policy.newton's first-iteration stop); rho_inf
              # 0.7 damps the high-frequency ringing that the first iterations leave (1.15 iterations
              # a step against 1.29 at 0.9) and costs little accuracy at dt <= 0.014
@@ -247,7 +247,7 @@ def run(cache=None, log=print, friction=False):
         for code in rows:
             for row in rows[code]:
                 e = row["error"]
-                log(f"  {motion} {code:<8} {row['label']:<26} {row['cpu_s']:7.3f} s CPU | vs MoorDyn ref: RMS "
+                log(f"  {motion} {code:<8} {row['label']:<58} {row['cpu_s']:7.3f} s CPU | vs MoorDyn ref: RMS "
                     f"{100 * e['moordyn']['rms']:6.2f} % peak {100 * e['moordyn']['peak']:+6.2f} % | vs cablefem ref: "
                     f"RMS {100 * e['cablefem']['rms']:6.2f} % peak {100 * e['cablefem']['peak']:+6.2f} %")
         results[motion] = {"rows": rows, "ratios": {key: cheapest(rows["moordyn"], rows["cablefem"], key)
