@@ -55,6 +55,9 @@ class Integrator:
     """
 
     name = "integrator"
+    #: the rows of an accepted step are the balance at the state, which the reactions read
+    #: (``residual_rows``); False: the scheme's reactions evaluate again (``python_ops.finish``)
+    rows_at_state = True
 
     #: contraction factor of modified Newton above which the tangent is rebuilt
     CONTRACTION = 0.3

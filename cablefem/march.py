@@ -163,10 +163,13 @@ def evaluate(prob, tangent, held):
 
 @njit(cache=True, inline="always", _nrt=False)
 def finish(prob):
-    """The rows at the converged point: the reactions need only the two end elements; a line whose
+    """The rows at the converged point: BDF2's reactions need only the two end elements; a line whose
     loads keep history (its commits not empty) evaluates them all, so that the history committed is
-    the converged point's, as on the Python ops (whose ``finish`` evaluates everything)."""
+    the converged point's, as on the Python ops (``python_ops.finish``). Generalised-alpha's
+    reactions evaluate at the state (``reactions``): without history it evaluates nothing."""
     keeps = prob.commits[0][0].shape[0] > 0 or prob.commits[1][0].shape[0] > 0
+    if not keeps and prob.scheme[0].kind != BDF2:
+        return 0
     return _assemble(prob, policy.FLAG[0], policy.FLAG[0], prob.all_elements if keeps else prob.end_elements)
 
 

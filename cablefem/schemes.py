@@ -141,6 +141,7 @@ class GeneralizedAlpha(CompiledSteps):
     again after the step (the balance holds at t_{n+1-alpha_f}), on both paths."""
 
     name = "generalized-alpha"
+    rows_at_state = False  # the balance holds at t_{n+1-alpha_f}: the reactions evaluate again
 
     def __init__(self, *args, rho_inf=0.5, **kwargs):
         self.rho_inf = float(rho_inf)
