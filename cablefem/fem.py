@@ -77,7 +77,7 @@ class LineFEM:
         self.order = line.order
         self.mesh = MeshLine(line.node_arc_lengths())
         self.element = element = scalar_element(self.order)
-        n_gauss = quadrature_points or self.order + 1
+        n_gauss = quadrature_points or line.quadrature_points or self.order + 1
         self.scalar_basis = Basis(self.mesh, element, quadrature=_scikit_fem_line_rule(2 * n_gauss - 1))
         sb = self.scalar_basis
         self.n_dofs = sb.N

@@ -12,6 +12,10 @@ import numpy as np
 
 from .errors import InputError
 
+#: Gauss points per element a line may ask for (``Line.quadrature_points``): beyond ~8 the
+#: touchdown's kink is integrated no better per unit of cost than with more elements
+MAX_QUADRATURE_POINTS = 16
+
 
 def _positive(value, key, allow_zero=False):
     """A finite float > 0 (or >= 0); InputError naming the key otherwise."""
@@ -128,7 +132,9 @@ class Joint:
 class Line:
     """A line from ``anchor`` (s = 0) to ``fairlead`` (s = L), segments listed anchor first.
 
-    ``order`` is the polynomial order of the finite elements (1, 2, 3, ...). ``joints``: points
+    ``order`` is the polynomial order of the finite elements (1, 2, 3, ...); ``quadrature_points``
+    the Gauss points per element of the loads at full points (mass, weight, drag, seabed contact
+    and friction; 0: order + 1, which integrates the mass exactly). ``joints``: points
     at segment boundaries, ((boundary, Joint), ...) with boundary 0 the anchor end and
     len(segments) the fairlead end (a line of a network joined through points, ``cablefem.network``).
     ``prescribed``: whether the anchor and the fairlead end have prescribed positions (the default)
@@ -145,6 +151,7 @@ class Line:
     joints: tuple = ()
     prescribed: tuple = (True, True)
     ends: tuple = (None, None)
+    quadrature_points: int = 0
 
     def __post_init__(self):
         object.__setattr__(self, "anchor", _point(self.anchor, "anchor"))
@@ -155,6 +162,12 @@ class Line:
         object.__setattr__(self, "segments", segments)
         if isinstance(self.order, bool) or not isinstance(self.order, (int, np.integer)) or self.order < 1:
             raise InputError(f"must be a whole number >= 1, got {self.order!r}", key="order")
+        q = self.quadrature_points
+        if isinstance(q, bool) or not isinstance(q, (int, np.integer)) or (q != 0 and not
+                                                                         self.order + 1 <= q <= MAX_QUADRATURE_POINTS):
+            raise InputError(f"must be a whole number from order + 1 = {self.order + 1} (fewer points do not "
+                             f"integrate the mass matrix) to {MAX_QUADRATURE_POINTS}, got {q!r}",
+                             key="quadrature_points")
         joints = tuple((int(k), joint) for k, joint in self.joints)
         if any(not 0 <= k <= len(segments) for k, _ in joints) or len({k for k, _ in joints}) != len(joints):
             raise InputError("joints must sit at distinct segment boundaries", key="joints")
@@ -211,6 +224,10 @@ class Line:
     def with_order(self, order):
         """The same line with another element order."""
         return replace(self, order=order)
+
+    def with_quadrature_points(self, points):
+        """The same line with another number of Gauss points per element (0: order + 1)."""
+        return replace(self, quadrature_points=points)
 
     def with_ends(self, anchor, fairlead):
         """The same line between other end points."""

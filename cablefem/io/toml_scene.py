@@ -66,7 +66,7 @@ LINE_TYPE_KEYS = {"diameter": v.limited(v.positive, "diameter"), "mass": v.limit
                   "Ca_tangential": _COEFFICIENT, "damping_when_slack": v.boolean,
                   "nominal_diameter": v.limited(v.positive, "diameter")}
 LINE_KEYS = {"name": v.text, "anchor": lambda value, key: value, "fairlead": lambda value, key: value,
-             "segments": v.tables, "order": _ORDER}  # an end: coordinates or a point's name (toml_network.end)
+             "segments": v.tables, "order": _ORDER, "quadrature_points": v.whole}  # an end: coordinates or a point's name (toml_network.end)
 SEGMENT_KEYS = {"type": v.text, "length": _LENGTH, "elements": _ELEMENTS}
 CONTACT_KEYS = {"stiffness": v.limited(v.positive, "stiffness"),
                 "damping_ratio": v.limited(v.non_negative, "damping_ratio"),
@@ -81,7 +81,7 @@ SOLVER_KEYS = {"integrator": v.choice(INTEGRATORS), "dt": v.positive, "duration"
                "assembly": v.choice(ASSEMBLY_PATHS), "rho_inf": v.fraction, "fit_touchdown": v.boolean,
                "newton": v.choice(NEWTON_MODES), "adaptive": v.boolean, "error_tolerance": v.positive}
 OUTPUT_KEYS = {"dir": v.folder, "every": v.positive}
-MOORDYN_KEYS = {"file": v.text, "order": _ORDER, "elements": _ELEMENTS}
+MOORDYN_KEYS = {"file": v.text, "order": _ORDER, "elements": _ELEMENTS, "quadrature_points": v.whole}
 
 
 def parse_toml(path):
@@ -197,6 +197,11 @@ def _moordyn_base(data, path):
                           for i, line in enumerate(lines) for j in range(len(line.segments))})
     if "order" in values:
         lines = [line.with_order(values["order"]) for line in lines]
+    if "quadrature_points" in values:
+        try:
+            lines = [line.with_quadrature_points(values["quadrature_points"]) for line in lines]
+        except InputError as error:
+            raise error.within(prefix="moordyn") from None
     return replace(base, lines=lines)
 
 
@@ -240,7 +245,8 @@ def _lines(raw, types, points=None, bodies=None):
         anchor = anchor if a is None else point_position(points[a], bodies)
         fairlead = fairlead if b is None else point_position(points[b], bodies)
         try:
-            line = Line(name, anchor, fairlead, segments, values.get("order", 1), ends=(a, b))
+            line = Line(name, anchor, fairlead, segments, values.get("order", 1), ends=(a, b),
+                        quadrature_points=values.get("quadrature_points", 0))
         except InputError as error:
             raise error.within(prefix=prefix) from None
         lines.append(v.check_chord(line, prefix) if (a, b) == (None, None) else line)
