@@ -143,13 +143,13 @@ def newton(prob, reuse, max_corrections):
         if ops.evaluate(prob, with_tangent, FLAG[0]) != 0:
             return LOST, refreshed, norm
         norm = ops.norm(prob)
+        reduced = norm <= (1 - 1e-4 * damping) * base_norm  # Armijo's test of the step taken
         if kept_step and damping == 1.0 and not damped and corrections == 0:
             # the kept factors' contraction, seen in the residual (none if the step did not reduce it)
-            contracted = norm <= (1 - 1e-4) * base_norm
-            ops.set_contraction(prob, max(norm / base_norm, THETA_FLOOR) if contracted else -1.0)
+            ops.set_contraction(prob, max(norm / base_norm, THETA_FLOOR) if reduced else -1.0)
         if norm <= tolerance and previous >= 0.0:
             return CONVERGED, refreshed, norm
-        if base_norm >= 0.0 and damping > settings.min_damping and not norm <= (1 - 1e-4 * damping) * base_norm:
+        if base_norm >= 0.0 and damping > settings.min_damping and not reduced:
             if damping == 1.0 and corrections < max_corrections and fresh and ops.hold(prob, corrections > 0):
                 if corrections == 0:
                     ops.save_original(prob)
