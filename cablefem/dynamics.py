@@ -55,9 +55,7 @@ class Integrator:
     """
 
     name = "integrator"
-    #: the rows of an accepted step are the balance at the state, which the reactions read
-    #: (``residual_rows``); False: the scheme's reactions evaluate again (``python_ops.finish``)
-    rows_at_state = True
+    rows_at_state = True  # an accepted step's rows are the state's, read by ``reactions`` (``python_ops.finish``)
 
     #: contraction factor of modified Newton above which the tangent is rebuilt
     CONTRACTION = 0.3
