@@ -55,7 +55,12 @@ def spec(name):
 
 
 def spec_of(load):
-    """The ``LoadSpec`` of a numpy load object; a clear error for a load with no compiled face."""
+    """The ``LoadSpec`` of a numpy load object; a clear error for a load with no compiled face. A
+    variant of a catalog load (a wrapper that changes its numpy face for a study, e.g.
+    validation/moordyn/switches.py; numpy path only) names the load it wraps as ``.wrapped`` and
+    has that load's spec: its name, rule and history."""
+    while not any(isinstance(load, entry.reference) for entry in CATALOG) and hasattr(load, "wrapped"):
+        load = load.wrapped
     for entry in CATALOG:
         if isinstance(load, entry.reference):
             return entry

@@ -81,11 +81,11 @@ class PerUnstretchedLength:
     """A load (drag, added mass) per unit unstretched length: its force and derivatives over |r'|."""
 
     def __init__(self, load):
-        self.load = load
+        self.wrapped = load
         self.rule = getattr(load, "rule", "full")
 
     def evaluate(self, state, jacobian=True):
-        terms = self.load.evaluate(state, jacobian)
+        terms = self.wrapped.evaluate(state, jacobian)
         if terms.force is None:
             return terms
         stretch = np.sqrt(np.einsum("ceq,ceq->eq", state.dr, state.dr))
@@ -107,19 +107,19 @@ class TwoSidedDamping:
     """A ``SeabedContact`` whose damping also acts on points moving out of the seabed (MoorDyn-C)."""
 
     def __init__(self, contact):
-        self.load = contact
+        self.wrapped = contact
         self.rule = getattr(contact, "rule", "full")
 
     def evaluate(self, state, jacobian=True):
-        terms = self.load.evaluate(state, jacobian)
-        if state.v is None or not np.any(self.load.damping > 0):
+        terms = self.wrapped.evaluate(state, jacobian)
+        if state.v is None or not np.any(self.wrapped.damping > 0):
             return terms
         shape = state.r.shape[1:]
-        proj = self.load.seabed.project(state.r.reshape(3, -1).T)
+        proj = self.wrapped.seabed.project(state.r.reshape(3, -1).T)
         gap = proj.gap.reshape(shape)
         n = proj.direction.T.reshape(3, *shape)
         vn = np.einsum("ceq,ceq->eq", state.v, n)
-        c = self.load.damping * ((gap < 0.0) & (vn > 0.0))
+        c = self.wrapped.damping * ((gap < 0.0) & (vn > 0.0))
         terms.force = terms.force - c * vn * n
         if jacobian:
             # on a plane d_P is constant; the switch's kink at v_n = 0 or d_G = 0 is left out
