@@ -30,6 +30,8 @@ class Contact:
     stiffness: float = 3.0e5
     damping_ratio: float = 1.0
     damping: float | None = None
+    #: the damper acts on points moving out of the seabed too (MoorDyn-C), not only closing ones
+    damping_when_opening: bool = False
 
 
 @dataclass(frozen=True)

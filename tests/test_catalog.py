@@ -20,7 +20,7 @@ from test_loads import (assert_tangent_matches_finite_differences, line_state, s
                         system_with_all_loads)
 
 #: every catalog load, and the two that see the current once more in a current varying with depth
-NAMES = [spec.name for spec in catalog.CATALOG] + ["drag+profile", "points+profile"]
+NAMES = [spec.name for spec in catalog.CATALOG] + ["drag+profile", "points+profile", "contact+opening"]
 #: a sheared current over the test line's heights (about -100 m to the surface, the clump near the
 #: seabed and the buoy at the surface both on a sloping piece), bending at four heights
 PROFILE = CurrentProfile.from_arrays([-130.0, -70.0, -30.0, 5.0],
@@ -33,8 +33,10 @@ def one_load_system(name, order):
     """The soft rope of test_loads with drag, added mass, contact and friction, keeping one load;
     for the point loads, the rope in two segments with a clump weight at their joint and a buoy at
     its free fairlead end, half out of the water; the soil, whose points lie below the seabed, on its
-    own line (``test_loads.soil_system``). '+profile': the same load in a sheared current."""
-    name, _, profile = name.partition("+")
+    own line (``test_loads.soil_system``). '+profile': the same load in a sheared current;
+    'contact+opening': the seabed's damper acting on points moving out too (MoorDyn-C's law)."""
+    name, _, variant = name.partition("+")
+    profile = variant == "profile"
     system = (soil_system(SEABED, order) if name == "soil"
               else system_with_all_loads(SEABED, LAW, order, profile=PROFILE if profile else None))
     if name == "points":
@@ -47,6 +49,7 @@ def one_load_system(name, order):
         system = LineSystem(line, SEABED, Contact(stiffness=0.0), system.environment)
     loads = [load for load in system.loads if catalog.spec_of(load).name == name]
     system.loads = loads[-1:]  # contact: the test's own (the catalog's has no stiffness here)
+    system.loads[0].opening = variant == "opening"
     return system
 
 
@@ -132,3 +135,35 @@ def test_the_point_loops_call_only_the_lines_loads_and_the_others_would_add_noth
     assert np.array_equal(rows, every_rows) and np.array_equal(band, every_band)
     # only a load that keeps history is committed (the soil's, at the full points)
     assert system.kept_history() == ({"full"} if name == "soil" else set())
+
+
+def test_an_opening_damper_pulls_points_lifting_off_and_friction_reads_its_magnitude(rng):
+    # MoorDyn-C's law (``damping_when_opening``): on a point in the seabed moving out, the damper's
+    # -c v_n d_P pulls it down; the friction then reads N = |f_n| (MoorDyn-C's |B_z|): the same
+    # friction force as a point pressed down by as much
+    system = one_load_system("contact+opening", 1)
+    contact = system.loads[0]
+    state, X, V, A = load_state(system, "contact", rng)
+    V[:, 2] += 0.5  # lifting: every point in the seabed opens, the slowest by ~0.4 m/s
+    state = system.state(X, V, A)
+    n = contact.seabed.project(state.r.reshape(3, -1).T).direction.T.reshape(state.r.shape)
+    gap = contact.seabed.gap_only(state.r.reshape(3, -1).T).reshape(state.r.shape[1:])
+    vn = np.einsum("ceq,ceq->eq", state.v, n)
+    on = contact.evaluate(state, jacobian=False).force
+    contact.opening = False
+    off = contact.evaluate(state, jacobian=False).force
+    opening = (gap < 0.0) & (vn > 0.0)
+    assert opening.sum() >= 3
+    pull = np.einsum("ceq,ceq->eq", on - off, n)  # the normal part: the damper alone
+    np.testing.assert_allclose(pull[opening], (-contact.damping * vn)[opening], rtol=1e-9)
+    np.testing.assert_array_equal(pull[~opening], 0.0)
+    pressure = np.einsum("ceq,ceq->eq", on, n)
+    pulled = opening & (pressure < 0.0)
+    assert pulled.sum() >= 1
+    slip = state.v - vn * n
+    friction = on - pressure * n
+    # the friction opposes the slip with the magnitude of |f_n| times the law's coefficient
+    assert np.all(np.einsum("ceq,ceq->eq", friction, slip)[pulled] < 0.0)
+    law = contact.friction
+    expected = law.evaluate(slip, np.abs(pressure), None)[0]
+    np.testing.assert_allclose(friction[:, pulled], expected[:, pulled], rtol=1e-9)

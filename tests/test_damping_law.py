@@ -102,3 +102,23 @@ def test_moordyn_files_are_read_with_moordyns_law():
     scene = read_moordyn("examples/flume_flat.dat")
     assert all(seg.type.damping_when_slack for seg in scene.lines[0].segments)
     assert not replace(scene.lines[0].segments[0].type, damping_when_slack=False).damping_when_slack
+
+
+def test_moordyn_files_get_moordyns_seabed_damper_and_a_toml_key_sets_it(tmp_path):
+    # [seabed] damping_when_opening: MoorDyn-C's damper acts on points moving out too
+    from cablefem.errors import InputError
+    from cablefem.io.scenes import load_scene
+
+    assert read_moordyn("examples/flume_flat.dat").contact.damping_when_opening
+    folder = tmp_path
+    (folder / "lines.dat").write_text(open("examples/flume_flat.dat").read())
+    path = folder / "scene.toml"
+    for text, expected in (("false", False), ("true", True)):
+        path.write_text(f'[moordyn]\nfile = "lines.dat"\n[seabed]\ndamping_when_opening = {text}\n')
+        assert load_scene(str(path)).contact.damping_when_opening is expected
+    path.write_text('[moordyn]\nfile = "lines.dat"\n[seabed]\ndamping_when_opening = "yes"\n')
+    with pytest.raises(InputError) as error:
+        load_scene(str(path))
+    assert "seabed.damping_when_opening" in str(error.value) and "scene.toml" in str(error.value)
+    # a TOML scene's own seabed keeps Eq. 11's damper
+    assert not Contact().damping_when_opening

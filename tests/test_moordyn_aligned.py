@@ -11,8 +11,8 @@ Tolerances, from the full study (validation/moordyn_aligned/README.md) plus what
 - snap, MoorDyn's coupling step: moving the fairlead along the secant of the motion every 0.01 s
   instead of every 0.001 s changes MoorDyn's snap tension by 0.46 % RMS at 40 segments (0.95 % at
   320): the switch must remove a difference that is there, > 0.2 %.
-- ``TwoSidedDamping``: MoorDyn-C's seabed damping acts on a penetrating point moving out too.
-- the switches run: a wrapped load has its load's spec (``catalog.spec_of``, ``.wrapped``).
+- ``damping_when_opening``: MoorDyn-C's seabed damping acts on a penetrating point moving out too.
+- a wrapped load (the study's switches) has its load's spec (``catalog.spec_of``, ``.wrapped``).
 """
 
 import numpy as np
@@ -24,7 +24,6 @@ from cablefem.geometry import Plane  # noqa: E402
 from cablefem.loads import State  # noqa: E402
 from cablefem.loads.contact import SeabedContact  # noqa: E402
 
-from validation.moordyn.switches import TwoSidedDamping  # noqa: E402
 from validation.moordyn_aligned import run as study  # noqa: E402
 
 
@@ -44,19 +43,19 @@ def test_moordyn_coupling_step_changes_its_snap_tension(results):
     assert results["snap"]["switches"]["coupling"]["difference"]["rms"] > 2e-3
 
 
-def test_two_sided_damping_pulls_a_penetrating_point_moving_out_and_leaves_a_closing_one():
+def test_the_opening_damper_pulls_a_penetrating_point_moving_out_and_leaves_a_closing_one():
+    # ``[seabed] damping_when_opening`` (MoorDyn-C's law), the switch of this study
     seabed = Plane((0.0, 0.0, -100.0), (0.0, 0.0, 1.0))
-    contact = SeabedContact(seabed, [1e5], [2e4])
-    wrapped = TwoSidedDamping(contact)
+    contact, opening = SeabedContact(seabed, [1e5], [2e4]), SeabedContact(seabed, [1e5], [2e4], opening=True)
     r = np.array([0.0, 0.0, -100.01]).reshape(3, 1, 1)
     dr = np.array([1.0, 0.0, 0.0]).reshape(3, 1, 1)
     for vz, extra in ((-0.1, 0.0), (0.1, -2e4 * 0.1)):
         state = State(r=r, dr=dr, v=np.array([0.0, 0.0, vz]).reshape(3, 1, 1))
-        plain, both = contact.evaluate(state), wrapped.evaluate(state)
+        plain, both = contact.evaluate(state), opening.evaluate(state)
         assert both.force[2, 0, 0] - plain.force[2, 0, 0] == pytest.approx(extra, rel=1e-12, abs=1e-12)
         h = 1e-7
         moved = State(r=r, dr=dr, v=np.array([0.0, 0.0, vz + h]).reshape(3, 1, 1))
-        slope = (wrapped.evaluate(moved, jacobian=False).force[2, 0, 0] - both.force[2, 0, 0]) / h
+        slope = (opening.evaluate(moved, jacobian=False).force[2, 0, 0] - both.force[2, 0, 0]) / h
         assert both.force_v[2, 2, 0, 0] == pytest.approx(slope, rel=1e-6)
 
 
@@ -78,25 +77,15 @@ def test_friction_variant_acts_alike_in_both_codes():
     assert study.compare(without, with_friction, 10.0)["rms"] > 0.015
 
 
-def test_a_run_with_the_study_switches_steps_and_commits_like_the_plain_loads():
-    # the switches wrap catalog loads (``.wrapped``) and run on the numpy path, which commits the
-    # history of the loads' specs: a wrapper must have its load's spec (it had none before the
-    # ``wrapped`` protocol, and every switched run stopped at its first step). With no seabed
-    # damping TwoSidedDamping is the plain contact: the numpy run equals the compiled one to the
-    # Newton tolerance's round-off; with MoorDyn's cBot it holds lifting points back, a change.
-    from dataclasses import replace
-
+def test_a_run_with_a_wrapped_load_steps_and_commits():
+    # PerUnstretchedLength wraps drag and added mass (``.wrapped``) and runs on the numpy path,
+    # which commits the history of the loads' specs: a wrapper must have its load's spec (it had
+    # none before the ``wrapped`` protocol, and every wrapped run stopped at its first step).
+    # Drag and added mass per unstretched length are over |r'| = 1 + e, e < 1e-3 here: the
+    # tension changes by less than 1e-3 of the hydrodynamic loads' share (measured 1.1e-5 of the mean)
     from validation.moordyn.runners import run_cablefem_case
 
     scene = study.aligned_scene("slow", 1, 20, 0.05, duration=3.0)
-    undamped = replace(scene, contact=replace(scene.contact, damping_ratio=0.0, damping=None))
-    plain = run_cablefem_case(undamped, 3.0, 0.05)["tensions"][:, 0]
-    switched = run_cablefem_case(undamped, 3.0, 0.05, two_sided_damping=True)["tensions"][:, 0]
-    assert np.max(np.abs(switched - plain)) < 1e-8 * plain.mean()
     aligned = run_cablefem_case(scene, 3.0, 0.05)["tensions"][:, 0]
-    damped = run_cablefem_case(scene, 3.0, 0.05, two_sided_damping=True)["tensions"][:, 0]
-    assert np.max(np.abs(damped - aligned)) > 1e-5 * aligned.mean()  # measured 1.3e-4
-    # drag and added mass per unstretched length, over |r'| = 1 + e with e < 1e-3 here: a change
-    # of the hydrodynamic loads' share below 1e-3 (measured 1.1e-5 of the mean tension)
     hydro = run_cablefem_case(scene, 3.0, 0.05, hydro_per_unstretched=True)["tensions"][:, 0]
     assert 0.0 < np.max(np.abs(hydro - aligned)) < 1e-3 * aligned.mean()

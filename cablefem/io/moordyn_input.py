@@ -18,7 +18,8 @@ Mapping (each conversion checked against the MoorDyn 2.7 library, docs/scene.md)
 - BA >= 0 is the internal damping coefficient [N s]: beta = BA / EA [s];
   BA < 0 is -zeta, MoorDyn's BA = zeta (UnstrLen / NumSegs) sqrt(EA m);
 - CdAx refers to the surface area pi d l, desire2023 Eq. 3 to d: Cd_tangential = pi CdAx;
-- kBot, cBot -> Contact.stiffness [N/m^3], Contact.damping [N s/m^3];
+- kBot, cBot -> Contact.stiffness [N/m^3], Contact.damping [N s/m^3], with MoorDyn-C's damper
+  acting on penetrating nodes moving out too (Contact.damping_when_opening);
 - MoorDyn-C friction is isotropic saturated damping (housner2022 Sec. 2.2 with one
   coefficient): |F| = mu FricDamp |v| per node until it exceeds StatDynFricScale mu |F_n|,
   then mu |F_n|; v_threshold is the velocity where that happens for a node of the
@@ -215,7 +216,7 @@ def _build(path, text, simplify=True):
         seabed = Horizontal(options["wtrdpth"])
     else:
         raise InputError("missing: needed for the seabed unless SeafloorFile is given", key="OPTIONS.WtrDpth")
-    contact = Contact(stiffness=get("kbot"), damping=get("cbot"))
+    contact = Contact(stiffness=get("kbot"), damping=get("cbot"), damping_when_opening=True)
     seabed, seabed_note = choose_seabed(seabed, lines, simplify)
     friction = _friction(get, lines[0], environment, notes)
     solver = Solver(duration=options["tmax"]) if "tmax" in options else Solver()

@@ -70,7 +70,7 @@ LINE_KEYS = {"name": v.text, "anchor": lambda value, key: value, "fairlead": lam
 SEGMENT_KEYS = {"type": v.text, "length": _LENGTH, "elements": _ELEMENTS}
 CONTACT_KEYS = {"stiffness": v.limited(v.positive, "stiffness"),
                 "damping_ratio": v.limited(v.non_negative, "damping_ratio"),
-                "damping": v.limited(v.non_negative, "contact_damping")}
+                "damping": v.limited(v.non_negative, "contact_damping"), "damping_when_opening": v.boolean}
 FRICTION_KEYS = {"model": v.choice(FRICTION_MODELS), "mu": v.limited(v.non_negative, "friction"),
                  "mu_axial": v.limited(v.non_negative, "friction"),
                  "mu_transverse": v.limited(v.non_negative, "friction"),

@@ -10,6 +10,12 @@ per unit area [N/m^3] and v_n = v . d_P. The damping per unit length c is
 MoorDyn's cBot [N s/m^3], cBot d. On a plane d_G is the distance to the
 plane, which equals MoorDyn's (z_b - r_3) n_z of housner2022 Eq. 4.
 
+The damper resists closing only (Eq. 11's min(v_n, 0)): it does not hold a point back as it
+lifts off. With ``opening`` (``[seabed] damping_when_opening``, MoorDyn-C's law: its
+``Line::getStateDeriv`` applies B_z = ((z_b - z) kBot - v_z cBot) d l to every penetrating node)
+it acts on every point in the seabed, -c v_n d_P, and can pull a point lifting off down; the
+normal force friction reads is then |f_n|, as MoorDyn-C's |B_z|.
+
 Eq. 11's third term, |p . d_P| d_P (the normal part of the line's weight,
 added in contact), is left out: it switches on discontinuously as a point
 touches the seabed, which breaks Newton's convergence, and it only shifts
@@ -42,11 +48,12 @@ class SeabedContact:
 
     name = "contact"
 
-    def __init__(self, seabed, stiffness, damping, friction=None):
+    def __init__(self, seabed, stiffness, damping, friction=None, opening=False):
         self.seabed = seabed
         self.stiffness = np.asarray(stiffness, dtype=float)[:, None]  # G_K d [N/m^2]
         self.damping = np.asarray(damping, dtype=float)[:, None]  # [N s/m^2]
         self.friction = friction
+        self.opening = bool(opening)  # the damper acts on points moving out too (MoorDyn-C)
 
     def evaluate(self, state, jacobian=True):
         r = state.r
@@ -62,13 +69,16 @@ class SeabedContact:
         if damped or sliding:
             vn = np.einsum("ceq,ceq->eq", state.v, n)
         if damped:
-            closing = touching & (vn < 0.0)
+            closing = touching & ((vn < 0.0) | self.opening)
             pressure = pressure - self.damping * np.where(closing, vn, 0.0)
         terms = Terms(force=pressure * n)
         if sliding:
             v_plane = state.v - vn * n
             axis, axis_norm, t, divisor = _axis(state.dr, n) if self.friction.uses_axis else (None,) * 4
-            friction, df_dw, df_dN, df_dq = self.friction.evaluate(v_plane, pressure, axis)
+            # N = |f_n|: the pressure is negative only where an opening damper pulls a point down
+            sign = np.where(pressure < 0.0, -1.0, 1.0)
+            friction, df_dw, df_dN, df_dq = self.friction.evaluate(v_plane, sign * pressure, axis)
+            df_dN = sign * df_dN  # dF/dp
             terms.force = terms.force + friction
         if not jacobian:
             return terms
@@ -116,7 +126,8 @@ class SeabedContact:
         model = ISOTROPIC if isinstance(law, IsotropicFriction) else (
             ANISOTROPIC if isinstance(law, AnisotropicFriction) else NO_FRICTION)
         values = {"k": self.stiffness[:, 0], "c": self.damping[:, 0], "model": np.full(nel, model),
-                  "mu": 0.0, "mu_axial": 0.0, "mu_transverse": 0.0, "scale": 1.0, "vc": 1.0}
+                  "mu": 0.0, "mu_axial": 0.0, "mu_transverse": 0.0, "scale": 1.0, "vc": 1.0,
+                  "opening": self.opening}
         if law is not None:
             values.update(scale=law.static_scale, vc=law.v_threshold)
             values.update({"mu": law.mu} if model == ISOTROPIC else
@@ -194,7 +205,8 @@ def contact_point(ctx, p, old, new, state, hold, out, M, u):
     touching = gap < 0.0 if (bits & TOUCHES) == 0 else (bits & TOUCH_ON) != 0
     pressure = -k * gap if touching else 0.0
     vn = dot(v, n)
-    closing = touching and c > 0.0 and ((bits & DAMPER_ON) != 0 if (bits & DAMPERS) != 0 else vn < 0.0)
+    closing = touching and c > 0.0 and ((bits & DAMPER_ON) != 0 if (bits & DAMPERS) != 0 else
+                                        (vn < 0.0 or c_.opening))
     stick = (bits & STICK) != 0
     if closing:
         pressure -= c * vn
@@ -222,6 +234,11 @@ def contact_point(ctx, p, old, new, state, hold, out, M, u):
     rubbing = touching and gap < 0.0  # a point held on the seabed's spring above it has no friction
     if not rubbing or model == NO_FRICTION:
         return
+    if pressure < 0.0:  # an opening damper pulls the point down: friction reads N = |f_n|
+        pressure = -pressure
+        for j in range(3):
+            dp_dr[j] = -dp_dr[j]
+            dp_dv[j] = -dp_dv[j]
     for i in range(3):
         w[i] = v[i] - vn * n[i]
         slip[i] = w[i]
@@ -364,7 +381,7 @@ def build(setting):
     props, contact = setting.props, setting.contact
     friction = None if setting.friction is None else friction_law(setting.friction)
     return SeabedContact(setting.seabed, contact.stiffness * props["diameter"], contact_damping(contact, props),
-                         friction=friction)
+                         friction=friction, opening=contact.damping_when_opening)
 
 
 def contact_damping(contact, props):
@@ -376,7 +393,7 @@ def contact_damping(contact, props):
 
 SPEC = LoadSpec("contact", "full",
                 (("k", "f8"), ("c", "f8"), ("model", "i8"), ("mu", "f8"), ("mu_axial", "f8"),
-                 ("mu_transverse", "f8"), ("scale", "f8"), ("vc", "f8")),
+                 ("mu_transverse", "f8"), ("scale", "f8"), ("vc", "f8"), ("opening", "?")),
                 contact_point, SeabedContact,
                 state=(("bits", "i1"), ("slip", "f8", (3,))), hold=(("bits", "i1"),), hold_rule=contact_hold,
                 scratch=(11, 10), build=build)

@@ -11,14 +11,13 @@ from cablefem.dynamics import INTEGRATORS
 from cablefem.errors import ConvergenceError
 from cablefem.line import Line, Segment
 from cablefem.loads.added_mass import AddedMass
-from cablefem.loads.contact import SeabedContact
 from cablefem.loads.drag import Drag
 from cablefem.motion import fairlead_motion
 from cablefem.run import boundary_path, build_system, start_states
 from cablefem.statics import solve_static
 
 from validation.moordyn import peer
-from validation.moordyn.switches import PerUnstretchedLength, TwoSidedDamping, VerticalSeabed
+from validation.moordyn.switches import PerUnstretchedLength, VerticalSeabed
 
 #: per case family: MoorDyn NumSegs factor over the file (flume: 40 segments of 15.9 m in the
 #: file; housner: 20 + 40 segments of 25 m) and dtM [s], the time step of MoorDyn's
@@ -99,14 +98,17 @@ def run_cablefem_case(scene, duration, dt, hydro_per_unstretched=False, lumped=F
     as run, ``failures`` (messages) and ``start`` (how the statics converged). A run whose Newton
     fails even after the integrator's own step halving is rerun from the start with dt / 2, up to
     ``retries`` times, and says so (README, "Problems found"). ``two_sided_damping``: MoorDyn-C's
-    seabed damping, acting also on a penetrating point that moves out (``switches``)."""
+    seabed damping, acting also on a penetrating point that moves out (``[seabed]
+    damping_when_opening``)."""
+    if two_sided_damping:
+        scene = replace(scene, contact=replace(scene.contact, damping_when_opening=True))
     start = time.perf_counter()
     states, how = static_start(scene)
     initialised = time.perf_counter()
     failures = []
     while True:
         try:
-            result = _cablefem_steps(scene, states, duration, dt, hydro_per_unstretched, lumped, two_sided_damping)
+            result = _cablefem_steps(scene, states, duration, dt, hydro_per_unstretched, lumped)
         except ConvergenceError as error:
             if len(failures) >= retries:
                 raise
@@ -146,7 +148,7 @@ def static_start(scene):
     return states, "; ".join(how)
 
 
-def _cablefem_steps(scene, states, duration, dt, hydro_per_unstretched, lumped, two_sided_damping=False):
+def _cablefem_steps(scene, states, duration, dt, hydro_per_unstretched, lumped):
     """Step every line from ``states`` by dt [s] up to ``duration`` [s]; the run's dict."""
     integrators = []
     for line, X0 in zip(scene.lines, states):
@@ -154,14 +156,11 @@ def _cablefem_steps(scene, states, duration, dt, hydro_per_unstretched, lumped, 
         if hydro_per_unstretched:
             system.loads = [PerUnstretchedLength(load) if isinstance(load, (Drag, AddedMass)) else load
                             for load in system.loads]
-        if two_sided_damping:
-            system.loads = [TwoSidedDamping(load) if isinstance(load, SeabedContact) else load
-                            for load in system.loads]
         integrators.append(INTEGRATORS[scene.solver.integrator](
             system, X0, boundary_path(scene, line), dt=dt, tolerance=scene.solver.tolerance,
             newton="full", lumped=lumped,  # one Newton for the compiled and the numpy path
             # wrapped loads have no compiled face: the numpy path
-            compiled=not (hydro_per_unstretched or two_sided_damping)))
+            compiled=not hydro_per_unstretched))
     steps = int(round(duration / dt))
     t = np.arange(steps + 1) * dt
     forces = np.empty((steps + 1, len(integrators), 3))

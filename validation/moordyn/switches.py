@@ -10,19 +10,15 @@ study only (cablefem itself keeps the models of desire2023).
 - ``PerUnstretchedLength``: MoorDyn-C weights drag and added mass by the unstretched segment
   length (and volume); desire2023 Eq. 1 by the stretched one, |r'| = 1 + e times more. The
   wrapper divides any load's force and derivatives by |r'|.
-- ``TwoSidedDamping``: MoorDyn-C's seabed damping -v_z cBot d l acts on every penetrating node,
-  closing or opening (``Line::getStateDeriv``: B_z = ((z_b - z) kBot - v_z cBot) d l while
-  z < z_b), so it holds back a node lifting off the seabed and can pull it down; cablefem's
-  (``cablefem.loads.contact``) acts only while the point closes, -c min(v_n, 0). The wrapper
-  adds the opening part, -c max(v_n, 0) d_P where d_G < 0, to a ``SeabedContact``'s force, and
-  its velocity derivative; frictionless scenes only (friction reads the contact's own pressure).
+- MoorDyn-C's seabed damping on points moving out, once a wrapper here, is cablefem's
+  ``[seabed] damping_when_opening`` (``cablefem.loads.contact``).
 """
 
 import numpy as np
 
 from cablefem.geometry import DepthGrid, Plane
 from cablefem.geometry.base import Projection, Seabed
-from cablefem.loads import Terms, add, outer
+from cablefem.loads import Terms, outer
 
 UP = np.array([0.0, 0.0, 1.0])
 
@@ -101,27 +97,3 @@ class PerUnstretchedLength:
         base = 0.0 if terms.force_dr is None else terms.force_dr
         scaled.force_dr = (base - outer(force, tangent)) / stretch
         return scaled
-
-
-class TwoSidedDamping:
-    """A ``SeabedContact`` whose damping also acts on points moving out of the seabed (MoorDyn-C)."""
-
-    def __init__(self, contact):
-        self.wrapped = contact
-        self.rule = getattr(contact, "rule", "full")
-
-    def evaluate(self, state, jacobian=True):
-        terms = self.wrapped.evaluate(state, jacobian)
-        if state.v is None or not np.any(self.wrapped.damping > 0):
-            return terms
-        shape = state.r.shape[1:]
-        proj = self.wrapped.seabed.project(state.r.reshape(3, -1).T)
-        gap = proj.gap.reshape(shape)
-        n = proj.direction.T.reshape(3, *shape)
-        vn = np.einsum("ceq,ceq->eq", state.v, n)
-        c = self.wrapped.damping * ((gap < 0.0) & (vn > 0.0))
-        terms.force = terms.force - c * vn * n
-        if jacobian:
-            # on a plane d_P is constant; the switch's kink at v_n = 0 or d_G = 0 is left out
-            terms.force_v = add(terms.force_v, -c * outer(n, n))
-        return terms
