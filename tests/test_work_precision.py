@@ -104,21 +104,24 @@ def test_error_is_rms_over_the_window_relative_to_the_mean():
 
 def test_common_study_row_runs_its_integrator_and_rho_inf():
     # verification/work_precision/common: a row's integrator, rho_inf and Newton reach the run. The
-    # generalised-alpha row equals, to the bit, a run of the aligned scene with [solver]
-    # integrator "generalized-alpha" and rho_inf 0.9, and differs from the BDF2 row and from the
-    # row at rho_inf 0.8 (deterministic runs: any difference is the setting, not noise).
+    # generalised-alpha row equals, to the bit, a run of the aligned scene (with MoorDyn-C's seabed
+    # damper, as the study's rows) with [solver] integrator "generalized-alpha" and rho_inf 0.9, and
+    # differs from the BDF2 row, from the row at rho_inf 0.8 and from the scene with Eq. 11's damper
+    # (deterministic runs: any difference is the setting, not noise).
     from dataclasses import replace
 
     from validation.moordyn_aligned.run import aligned_scene
-    from verification.work_precision.common import Row, cablefem_row
+    from verification.work_precision.common import SEABED_DAMPER_OPENING, Row, cablefem_row
     from verification.work_precision.runs import run_cablefem_scene
 
     bdf2, alpha, other = Row(1, 14, 0.17), Row(1, 14, 0.17, 1e-4, "generalized-alpha", 0.9), \
         Row(1, 14, 0.17, 1e-4, "generalized-alpha", 0.8)
     assert (bdf2.label(), alpha.label()) == ("P1 x 14, dt 0.17", "P1 x 14, gen-a 0.9, dt 0.17")
-    scene = aligned_scene("slow", 1, 14, 0.17, tolerance=1e-4)
+    assert SEABED_DAMPER_OPENING
+    scene = aligned_scene("slow", 1, 14, 0.17, tolerance=1e-4, damping_when_opening=True)
     scene.solver = replace(scene.solver, integrator="generalized-alpha", rho_inf=0.9)
     direct = run_cablefem_scene(scene)
+    closing = replace(scene, contact=replace(scene.contact, damping_when_opening=False))
     auto = Row(1, 14, 0.17, 1e-4, "generalized-alpha", 0.9, "auto")
     assert auto.label() == "P1 x 14, gen-a 0.9, dt 0.17, auto Newton"
     runs = {row: cablefem_row("slow", row)[0]["tension"] for row in (bdf2, alpha, other, auto)}
@@ -126,6 +129,7 @@ def test_common_study_row_runs_its_integrator_and_rho_inf():
     mean = np.mean(direct["tension"])
     assert np.max(np.abs(runs[bdf2] - runs[alpha])) > 1e-4 * mean
     assert np.max(np.abs(runs[other] - runs[alpha])) > 1e-6 * mean
+    assert np.max(np.abs(run_cablefem_scene(closing)["tension"] - runs[alpha])) > 1e-6 * mean
     # the row's Newton reaches the run too ("full" unless it says; "auto" keeps LU factors)
     scene.solver = replace(scene.solver, newton="auto")
     assert np.array_equal(runs[auto], run_cablefem_scene(scene)["tension"])

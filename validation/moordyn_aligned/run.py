@@ -97,10 +97,13 @@ def moordyn(motion, segments, dtM, coupling=FINE_COUPLING, options=None, duratio
     return _cached(cache, settings, compute)
 
 
-def aligned_scene(motion, order, elements, dt, duration=None, tolerance=1e-8, damping_when_slack=True):
-    """The flat flume scene, frictionless, with MoorDyn-C's damping law (``damping_when_slack``)."""
+def aligned_scene(motion, order, elements, dt, duration=None, tolerance=1e-8, damping_when_slack=True,
+                  damping_when_opening=False):
+    """The flat flume scene, frictionless, with MoorDyn-C's damping law (``damping_when_slack``) and,
+    with ``damping_when_opening``, its seabed damper (acting on points moving out too)."""
     scene = flume_scene("flat", MOTIONS[motion], elements, order, duration or DURATION[motion], dt)
-    scene = replace(scene, friction=replace(scene.friction, model="none"))
+    scene = replace(scene, friction=replace(scene.friction, model="none"),
+                    contact=replace(scene.contact, damping_when_opening=damping_when_opening))
     line = scene.lines[0]
     segments = [Segment(replace(s.type, damping_when_slack=damping_when_slack), s.length, s.elements)
                 for s in line.segments]
@@ -205,6 +208,8 @@ def plan(fast):
                               (2, 320, 0.000625, 1e-8), (3, 80, 0.00125, 1e-8),
                               (1, 640, 0.00125, 1e-4), (1, 320, 0.0025, 1e-4)],
                  "finest": ((1280, 2e-5, SNAP_REFERENCE_COUPLING), (1, 640, 0.000625, 1e-8)),
+                 "finest_switched": ((1280, 2e-5, SNAP_REFERENCE_COUPLING),
+                                     (1, 640, 0.000625, 1e-8, "two-sided-contact-damping")),
                  "switches": {
                      "coupling": ("moordyn", (320, 2.5e-4, COUPLING_DT), (320, 2.5e-4, FINE_COUPLING)),
                      "coupling_640": ("moordyn", (640, 8e-5, COUPLING_DT), (640, 1e-4, FINE_COUPLING)),
@@ -218,6 +223,7 @@ def plan(fast):
                  "cablefem": [(2, 40, 0.01, 1e-8), (2, 80, 0.005, 1e-8), (1, 160, 0.005, 1e-8),
                               (1, 320, 0.0025, 1e-8), (3, 80, 0.0025, 1e-8), (2, 160, 0.0025, 1e-4)],
                  "finest": ((640, 1e-4, FINE_COUPLING), (1, 320, 0.0025, 1e-8)),
+                 "finest_switched": ((640, 1e-4, FINE_COUPLING), (1, 320, 0.0025, 1e-8, "two-sided-contact-damping")),
                  "switches": {
                      "coupling": ("moordyn", (320, 2.5e-4, COUPLING_DT), (320, 2.5e-4, FINE_COUPLING)),
                      "hydrodynamics_per_unstretched_length": (
@@ -279,6 +285,8 @@ def study_motion(motion, spec, cache, log=print):
                     f" | vs cablefem finest: RMS {100 * b['rms']:5.2f} % peak {100 * b['peak']:+6.2f} %"
                     f" | {row['wall_s']:7.1f} s")
         entry["runs"] = rows
+    if spec.get("finest_switched"):
+        entry["finest_switched"] = finest_switched(motion, spec, cache, log, duration=duration)
         if motion == "snap":
             entry["spectrum"] = spectrum_bands(cf_ref, t_from)
     entry["switches"] = {}
@@ -291,6 +299,23 @@ def study_motion(motion, spec, cache, log=print):
         log(f"  switch {name:<36} {label(switched)} - {label(aligned)}: RMS {100 * d['rms']:.2f} %, "
             f"mean {100 * d['mean']:+.2f} %, peak {100 * d['peak']:+.2f} %")
     return entry
+
+
+def finest_switched(motion, spec, cache, log=print, duration=None):
+    """The finest runs against each other with cablefem's seabed damper switched to MoorDyn-C's
+    (``spec["finest_switched"]``): the comparison ``study_motion`` makes of the finest runs."""
+    md_settings, cf_settings = spec["finest_switched"]
+    duration = duration or DURATION[motion]
+    t_from = WINDOW[motion]
+    md_ref = moordyn(motion, *md_settings, duration=duration, cache=cache)
+    switched = cablefem(motion, *cf_settings[:4], variant=cf_settings[4], duration=duration, cache=cache)
+    found = {"moordyn": md_label(md_settings), "cablefem": cf_label(cf_settings),
+             "cablefem_vs_moordyn": compare(switched, md_ref, t_from),
+             "smooth_part": smooth_part(switched, md_ref, (t_from, duration))}
+    d = found["cablefem_vs_moordyn"]
+    log(f"  finest, switched: {found['cablefem']} - {found['moordyn']}: RMS {100 * d['rms']:.3f} %, "
+        f"mean {100 * d['mean']:+.3f} %, peak {100 * d['peak']:+.3f} %")
+    return found
 
 
 def run(fast=False, cache=None, log=print):
