@@ -91,17 +91,12 @@ def refined(scene, factor):
     return replace(scene, lines=lines)
 
 
-def run_cablefem_case(scene, duration, dt, hydro_per_unstretched=False, lumped=False, retries=2,
-                      two_sided_damping=False):
+def run_cablefem_case(scene, duration, dt, hydro_per_unstretched=False, lumped=False, retries=2):
     """cablefem's BDF2 on ``scene`` (statics at t = 0, then steps of dt [s]): dict of t (n,),
     forces (n, lines, 3) [N] on the fairleads, wall_time_s, init_time_s, newton_iterations, dt
     as run, ``failures`` (messages) and ``start`` (how the statics converged). A run whose Newton
     fails even after the integrator's own step halving is rerun from the start with dt / 2, up to
-    ``retries`` times, and says so (README, "Problems found"). ``two_sided_damping``: MoorDyn-C's
-    seabed damping, acting also on a penetrating point that moves out (``[seabed]
-    damping_when_opening``)."""
-    if two_sided_damping:
-        scene = replace(scene, contact=replace(scene.contact, damping_when_opening=True))
+    ``retries`` times, and says so (README, "Problems found")."""
     start = time.perf_counter()
     states, how = static_start(scene)
     initialised = time.perf_counter()

@@ -112,12 +112,14 @@ def aligned_scene(motion, order, elements, dt, duration=None, tolerance=1e-8, da
     return scene
 
 
-#: cablefem's variants: name -> (scene changes, run_cablefem_case switches); None runs compiled
+#: cablefem's variants: name -> run_cablefem_case's switches, or None: the aligned scene runs compiled
+#: (with Eq. 11's tension law for "default-damping-law", MoorDyn-C's seabed damper for
+#: "two-sided-contact-damping")
 VARIANTS = {None: None,
             "default-damping-law": None,
             "numpy-hydroTrue-lumpedFalse": {"hydro_per_unstretched": True},
             "numpy-hydroFalse-lumpedTrue": {"lumped": True},
-            "two-sided-contact-damping": {"two_sided_damping": True}}
+            "two-sided-contact-damping": None}
 
 
 def cablefem(motion, order, elements, dt, tolerance=1e-8, variant=None, duration=None, cache=None):
@@ -132,7 +134,8 @@ def cablefem(motion, order, elements, dt, tolerance=1e-8, variant=None, duration
         from verification.work_precision.runs import run_cablefem_scene
 
         scene = aligned_scene(motion, order, elements, dt, duration, tolerance,
-                              damping_when_slack=variant != "default-damping-law")
+                              damping_when_slack=variant != "default-damping-law",
+                              damping_when_opening=variant == "two-sided-contact-damping")
         switches = VARIANTS[variant]
         if switches is None:
             run = run_cablefem_scene(scene)
@@ -208,8 +211,7 @@ def plan(fast):
                               (2, 320, 0.000625, 1e-8), (3, 80, 0.00125, 1e-8),
                               (1, 640, 0.00125, 1e-4), (1, 320, 0.0025, 1e-4)],
                  "finest": ((1280, 2e-5, SNAP_REFERENCE_COUPLING), (1, 640, 0.000625, 1e-8)),
-                 "finest_switched": ((1280, 2e-5, SNAP_REFERENCE_COUPLING),
-                                     (1, 640, 0.000625, 1e-8, "two-sided-contact-damping")),
+                 "finest_switched": (1, 640, 0.000625, 1e-8, "two-sided-contact-damping"),
                  "switches": {
                      "coupling": ("moordyn", (320, 2.5e-4, COUPLING_DT), (320, 2.5e-4, FINE_COUPLING)),
                      "coupling_640": ("moordyn", (640, 8e-5, COUPLING_DT), (640, 1e-4, FINE_COUPLING)),
@@ -223,7 +225,7 @@ def plan(fast):
                  "cablefem": [(2, 40, 0.01, 1e-8), (2, 80, 0.005, 1e-8), (1, 160, 0.005, 1e-8),
                               (1, 320, 0.0025, 1e-8), (3, 80, 0.0025, 1e-8), (2, 160, 0.0025, 1e-4)],
                  "finest": ((640, 1e-4, FINE_COUPLING), (1, 320, 0.0025, 1e-8)),
-                 "finest_switched": ((640, 1e-4, FINE_COUPLING), (1, 320, 0.0025, 1e-8, "two-sided-contact-damping")),
+                 "finest_switched": (1, 320, 0.0025, 1e-8, "two-sided-contact-damping"),
                  "switches": {
                      "coupling": ("moordyn", (320, 2.5e-4, COUPLING_DT), (320, 2.5e-4, FINE_COUPLING)),
                      "hydrodynamics_per_unstretched_length": (
@@ -264,13 +266,11 @@ def study_motion(motion, spec, cache, log=print):
     log(f"== {motion}: window {t_from:g}-{duration:g} s, frictionless, aligned physics")
     if spec["finest"] is not None:
         md_ref, cf_ref = md(spec["finest"][0]), cf(spec["finest"][1])
-        entry["finest"] = {"moordyn": md_label(spec["finest"][0]), "cablefem": cf_label(spec["finest"][1]),
-                           "moordyn_mean_N": float(np.mean(md_ref["tension"][md_ref["t"] >= t_from])),
-                           "cablefem_vs_moordyn": compare(cf_ref, md_ref, t_from),
-                           "smooth_part": smooth_part(cf_ref, md_ref, window)}
-        d = entry["finest"]["cablefem_vs_moordyn"]
-        log(f"  finest: {entry['finest']['cablefem']} - {entry['finest']['moordyn']}: RMS {100 * d['rms']:.2f} %, "
-            f"mean {100 * d['mean']:+.2f} %, peak {100 * d['peak']:+.2f} %, trough {100 * d['trough']:+.2f} %")
+        entry["finest"] = finest_pair(md_ref, cf_ref, spec["finest"], window, log)
+        if spec.get("finest_switched"):  # the same MoorDyn run against cablefem with a switch
+            switched = spec["finest_switched"]
+            entry["finest_switched"] = finest_pair(md_ref, cf(switched), (spec["finest"][0], switched), window,
+                                                   log, "finest, switched")
         rows = []
         for code, runs, label, get in (("moordyn", spec["moordyn"], md_label, md),
                                        ("cablefem", spec["cablefem"], cf_label, cf)):
@@ -285,8 +285,6 @@ def study_motion(motion, spec, cache, log=print):
                     f" | vs cablefem finest: RMS {100 * b['rms']:5.2f} % peak {100 * b['peak']:+6.2f} %"
                     f" | {row['wall_s']:7.1f} s")
         entry["runs"] = rows
-    if spec.get("finest_switched"):
-        entry["finest_switched"] = finest_switched(motion, spec, cache, log, duration=duration)
         if motion == "snap":
             entry["spectrum"] = spectrum_bands(cf_ref, t_from)
     entry["switches"] = {}
@@ -301,20 +299,17 @@ def study_motion(motion, spec, cache, log=print):
     return entry
 
 
-def finest_switched(motion, spec, cache, log=print, duration=None):
-    """The finest runs against each other with cablefem's seabed damper switched to MoorDyn-C's
-    (``spec["finest_switched"]``): the comparison ``study_motion`` makes of the finest runs."""
-    md_settings, cf_settings = spec["finest_switched"]
-    duration = duration or DURATION[motion]
-    t_from = WINDOW[motion]
-    md_ref = moordyn(motion, *md_settings, duration=duration, cache=cache)
-    switched = cablefem(motion, *cf_settings[:4], variant=cf_settings[4], duration=duration, cache=cache)
-    found = {"moordyn": md_label(md_settings), "cablefem": cf_label(cf_settings),
-             "cablefem_vs_moordyn": compare(switched, md_ref, t_from),
-             "smooth_part": smooth_part(switched, md_ref, (t_from, duration))}
+def finest_pair(md_run, cf_run, settings, window, log=print, what="finest"):
+    """A MoorDyn and a cablefem run (``settings``: theirs) against each other over ``window`` [s, s]:
+    their labels, MoorDyn's mean tension there, ``compare`` and ``smooth_part``; logged as ``what``."""
+    t_from = window[0]
+    found = {"moordyn": md_label(settings[0]), "cablefem": cf_label(settings[1]),
+             "moordyn_mean_N": float(np.mean(md_run["tension"][md_run["t"] >= t_from])),
+             "cablefem_vs_moordyn": compare(cf_run, md_run, t_from),
+             "smooth_part": smooth_part(cf_run, md_run, window)}
     d = found["cablefem_vs_moordyn"]
-    log(f"  finest, switched: {found['cablefem']} - {found['moordyn']}: RMS {100 * d['rms']:.3f} %, "
-        f"mean {100 * d['mean']:+.3f} %, peak {100 * d['peak']:+.3f} %")
+    log(f"  {what}: {found['cablefem']} - {found['moordyn']}: RMS {100 * d['rms']:.3f} %, "
+        f"mean {100 * d['mean']:+.3f} %, peak {100 * d['peak']:+.3f} %, trough {100 * d['trough']:+.3f} %")
     return found
 
 
