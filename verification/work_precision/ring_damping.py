@@ -12,7 +12,8 @@ with ten times it. If the scatter is that ring's, it shrinks with the larger bet
     python -m verification.work_precision.ring_damping [--beta-factor 10] [--elements 56 60 ...]
         [--out DIR]
 
-prints the table and writes ``ring_damping.json`` (~7 min on the 2-core machine).
+prints a line per beta factor and writes ``ring_damping.json`` (~7 min on the 2-core machine;
+``--beta-factor 1`` would run the first pass twice under one key).
 """
 
 import argparse
@@ -50,7 +51,7 @@ def scene(elements, dt, beta_factor, row):
 def run(beta_factors=(1.0, 10.0), elements=ELEMENTS, log=print):
     """RMS error [-] of each row against the reference, per beta factor."""
     results = {"row_dt": ROW_DT, "reference": {"order": 1, "elements": REFERENCE[0], "dt": REFERENCE[1]},
-               "window_s": WINDOW["slow"], "elements": list(elements), "rms": {}}
+               "t_from_s": WINDOW["slow"], "elements": list(elements), "rms": {}}
     for factor in beta_factors:
         reference = run_cablefem_scene(scene(REFERENCE[0], REFERENCE[1], factor, row=False))
         errors = [compare(run_cablefem_scene(scene(n, ROW_DT, factor, row=True)), reference, WINDOW["slow"])["rms"]
