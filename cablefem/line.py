@@ -234,6 +234,12 @@ class Line:
         """The same line between other end points."""
         return replace(self, anchor=anchor, fairlead=fairlead)
 
+    def with_types(self, change):
+        """The same line with every segment's line type replaced by ``change(type)`` (a switch of one
+        property, e.g. ``lambda t: replace(t, EA=2 * t.EA)``)."""
+        return replace(self, segments=tuple(Segment(change(seg.type), seg.length, seg.elements)
+                                            for seg in self.segments))
+
     def with_elements(self, elements):
         """The same line with ``elements`` elements spread over the segments by length."""
         total = self.unstretched_length

@@ -133,3 +133,17 @@ def test_compiled_steps_with_points_and_a_free_end_equal_the_python_path(order):
     np.testing.assert_allclose(f1, f2, rtol=0, atol=1e-9 * np.abs(f2).max())
     np.testing.assert_allclose(X1, X2, rtol=0, atol=1e-9)
     assert np.linalg.norm(X1[system.fem.anchor_dof] - X0[system.fem.anchor_dof]) > 1e-2  # the free end moves
+
+
+def test_with_types_changes_the_types_and_keeps_joints_ends_and_mesh():
+    """``Line.with_types`` (the switches of the studies: EA, beta, the slack law) replaces each
+    segment's type and nothing else: a line built again from name, ends, segments and order would
+    lose its joints and its free end."""
+    line = hanging(2, Joint("clump", mass=5.0e3, volume=0.5))
+    stiffer = line.with_types(lambda t: replace(t, EA=2.0 * t.EA))
+    assert [seg.type.EA for seg in stiffer.segments] == [2.0 * CHAIN.EA]
+    assert [(seg.length, seg.elements) for seg in stiffer.segments] == [(seg.length, seg.elements)
+                                                                      for seg in line.segments]
+    assert (stiffer.joints, stiffer.prescribed, stiffer.order) == (line.joints, (False, True), 2)
+    np.testing.assert_array_equal(stiffer.anchor, line.anchor)
+    np.testing.assert_array_equal(stiffer.fairlead, line.fairlead)

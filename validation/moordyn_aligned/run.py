@@ -40,7 +40,6 @@ import numpy as np
 if __package__ in (None, ""):  # python validation/moordyn_aligned/run.py
     sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from cablefem.line import Line, Segment  # noqa: E402
 from cablefem.scenes import FLUME_MOTIONS, flume_scene, table5_chain  # noqa: E402
 from cablefem.study import write_json  # noqa: E402
 from validation.moordyn.comparison import differences  # noqa: E402
@@ -104,10 +103,8 @@ def aligned_scene(motion, order, elements, dt, duration=None, tolerance=1e-8, da
     scene = flume_scene("flat", MOTIONS[motion], elements, order, duration or DURATION[motion], dt)
     scene = replace(scene, friction=replace(scene.friction, model="none"),
                     contact=replace(scene.contact, damping_when_opening=damping_when_opening))
-    line = scene.lines[0]
-    segments = [Segment(replace(s.type, damping_when_slack=damping_when_slack), s.length, s.elements)
-                for s in line.segments]
-    scene = replace(scene, lines=[Line(line.name, line.anchor, line.fairlead, segments, line.order)])
+    line = scene.lines[0].with_types(lambda t: replace(t, damping_when_slack=damping_when_slack))
+    scene = replace(scene, lines=[line])
     scene.solver = replace(scene.solver, tolerance=tolerance, newton="full")
     return scene
 

@@ -24,7 +24,6 @@ from pathlib import Path
 if __package__ in (None, ""):
     sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from cablefem.line import Line, Segment  # noqa: E402
 from cablefem.study import write_json  # noqa: E402
 from validation.moordyn_aligned.run import WINDOW, aligned_scene, compare  # noqa: E402
 from verification.work_precision.runs import run_cablefem_scene  # noqa: E402
@@ -39,10 +38,7 @@ def scene(elements, dt, beta_factor, row):
     beta times ``beta_factor``; a ``row`` in the study's solver settings, else the reference's
     (BDF2, tolerance 1e-8)."""
     s = aligned_scene("slow", 1, elements, dt, tolerance=1e-3 if row else 1e-8, damping_when_opening=True)
-    line = s.lines[0]
-    segments = [Segment(replace(g.type, damping=g.type.damping * beta_factor), g.length, g.elements)
-                for g in line.segments]
-    s = replace(s, lines=[Line(line.name, line.anchor, line.fairlead, segments, line.order)])
+    s = replace(s, lines=[s.lines[0].with_types(lambda t: replace(t, damping=t.damping * beta_factor))])
     if row:
         s.solver = replace(s.solver, integrator="generalized-alpha", rho_inf=0.7, newton="modified")
     return s
@@ -68,7 +64,6 @@ def main(argv=None):
     parser.add_argument("--out", type=Path, default=HERE, help="directory for ring_damping.json")
     args = parser.parse_args(argv)
     results = run((1.0, args.beta_factor), args.elements)
-    args.out.mkdir(parents=True, exist_ok=True)
     write_json(args.out / "ring_damping.json", results)
     print(f"wrote {args.out / 'ring_damping.json'}")
 

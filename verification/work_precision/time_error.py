@@ -28,7 +28,6 @@ import numpy as np
 if __package__ in (None, ""):
     sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from cablefem.line import Line, Segment  # noqa: E402
 from cablefem.scenes import flume_scene, table5_chain  # noqa: E402
 from cablefem.study import write_json  # noqa: E402
 from validation.moordyn_aligned.run import WINDOW, aligned_scene, compare, spectrum_bands  # noqa: E402
@@ -62,9 +61,7 @@ def run(order, elements, dt, stiffness_factor=1.0, ea_factor=1.0):
     fairlead."""
     scene = aligned_scene("slow", order, elements, dt, tolerance=1e-4)
     scene = replace(scene, contact=replace(scene.contact, stiffness=scene.contact.stiffness * stiffness_factor))
-    line = scene.lines[0]
-    segments = [Segment(replace(s.type, EA=s.type.EA * ea_factor), s.length, s.elements) for s in line.segments]
-    scene = replace(scene, lines=[Line(line.name, line.anchor, line.fairlead, segments, line.order)])
+    scene = replace(scene, lines=[scene.lines[0].with_types(lambda t: replace(t, EA=t.EA * ea_factor))])
     scene.solver = replace(scene.solver, integrator="generalized-alpha", rho_inf=0.9, newton="auto")
     found = run_cablefem_scene(scene)
     return {"t": found["t"], "tension": found["tension"]}
