@@ -1,8 +1,8 @@
 """Wall time per simulated second of the six desire2023 flume cases (issue 4's benchmark).
 
 Each case (flat, gentle 4 deg and steep 19 deg seabed; quasi-static 17 s / 2.5 m / 15 m
-drift and dynamic 6 s / 5 m motions, ``cablefem.scenes.flume_scene``) is run through
-``cablefem.run.run_scene`` exactly as ``cablefem run`` does it, output frames every 0.1 s
+drift and dynamic 6 s / 5 m motions, ``cablefem.model.builtin.flume_scene``) is run through
+``cablefem.runs.run.run_scene`` exactly as ``cablefem run`` does it, output frames every 0.1 s
 included, at a few settings of element order, element count and time step. The table gives
 wall time per simulated second (static start and file writing included) and the largest
 fairlead tension, whose spread over the settings shows what the cheaper ones give up.
@@ -18,8 +18,8 @@ import json
 import tempfile
 import time
 
-from cablefem.run import run_scene
-from cablefem.scenes import FLUME_MOTIONS, FLUME_SEABEDS, flume_scene
+from cablefem.runs.run import run_scene
+from cablefem.model.builtin import FLUME_MOTIONS, FLUME_SEABEDS, flume_scene
 
 #: (order, elements, dt [s]); the first is the built-in scene's
 SETTINGS = ((1, 40, 0.01), (1, 80, 0.005), (2, 20, 0.01), (2, 40, 0.005), (3, 14, 0.01))

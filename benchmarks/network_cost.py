@@ -1,7 +1,7 @@
 """What a junction costs a run (issue 18): a crowfoot, one line from a moving platform to a free
 point carrying a clump, two legs from there to anchors (the junction joins three line ends), run
-with ``cablefem.coupled_steps.JunctionSteps`` as ``cablefem run`` does (compiled:
-``cablefem.junction_march``), against each of its lines alone (its junction end fixed where the
+with ``cablefem.dynamics.junctions.JunctionSteps`` as ``cablefem run`` does (compiled:
+``cablefem.compiled.junctions``), against each of its lines alone (its junction end fixed where the
 statics put it, the compiled BDF2 march of one line) and, with ``--python``, against the Python loop
 of the same steps. Wall time per simulated second, the runs alternated and repeated in one
 process, medians; prints a table.
@@ -17,11 +17,14 @@ from pathlib import Path
 
 import numpy as np
 
-from cablefem.dynamics import INTEGRATORS
+from cablefem.dynamics.registry import INTEGRATORS
 from cablefem.io import load_scene
-from cablefem.network import Point, dynamic_lines
-from cablefem.run import anchor_path, boundary_path, build_system, junction_steps, start_states
-from cablefem.schemes import integrator_options
+from cablefem.model.network import Point, dynamic_lines
+from cablefem.model.network import anchor_path, boundary_path
+from cablefem.fem.system import build_system
+from cablefem.runs.run import junction_steps
+from cablefem.statics.scene import start_states
+from cablefem.dynamics.schemes import integrator_options
 
 SCENE = Path(__file__).with_name("crowfoot.toml")
 

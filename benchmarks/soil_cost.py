@@ -5,10 +5,10 @@ The line is rui2025's Case 3 (``validation.rui2025.run``: 850 m of chain, padeye
 218 P1 elements), its fairlead surging harmonically (``AMPLITUDE`` m every ``PERIOD`` s). Without
 soil the seabed is the contact spring, frictionless (the conventional model) or with isotropic friction
 (mu 0.3: the model that also resists the lying chain's sliding); with soil the macro-element of
-``cablefem.loads.soil`` replaces both. The ratio is to the frictionless contact. Each run goes through ``cablefem.run.run_scene`` as
+``cablefem.loads.soil`` replaces both. The ratio is to the frictionless contact. Each run goes through ``cablefem.runs.run.run_scene`` as
 ``cablefem run`` does (frames every 10 s), once to compile (or load) the kernels, then
 ``--repeats`` times, alternating, the fastest kept. The static start is timed apart (the soil's is
-the pretension path, ``cablefem.pretension``) and taken off: the table's "march" is the time
+the pretension path, ``cablefem.statics.pretension``) and taken off: the table's "march" is the time
 stepping alone.
 
     python -m benchmarks.soil_cost [--duration T] [--repeats N] [--json FILE]
@@ -23,8 +23,9 @@ import tempfile
 import time
 from dataclasses import replace
 
-from cablefem.run import run_scene, start_states
-from cablefem.scene import Friction, Motion, Output
+from cablefem.runs.run import run_scene
+from cablefem.statics.scene import start_states
+from cablefem.model.scene import Friction, Motion, Output
 
 from validation.rui2025 import run as study
 

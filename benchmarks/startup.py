@@ -40,7 +40,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
-#: the MoorDyn side: the snap motion (5 m surge, 6 s, smoothstep ramp over 6 s, as cablefem.motion),
+#: the MoorDyn side: the snap motion (5 m surge, 6 s, smoothstep ramp over 6 s, as cablefem.model.motion),
 #: the coupled point moved along the secant of the motion every 0.01 s for 36 s
 MOORDYN_SCRIPT = """
 import math, sys

@@ -2,9 +2,9 @@
 the catalog costs").
 
 Times of a run vary by ±10 % between rounds on a shared VM; instruction counts do not. This runs
-one flume case (``cablefem.scenes.flume_scene``, as ``benchmarks.flume_cost`` does) in a child
+one flume case (``cablefem.model.builtin.flume_scene``, as ``benchmarks.flume_cost`` does) in a child
 process under ``valgrind --tool=callgrind`` and counts only the instructions inside the calls of
-the compiled steps (``cablefem.marcher.STEPS``), switched on and off around each call by
+the compiled steps (``cablefem.compiled.problem.STEPS``), switched on and off around each call by
 callgrind's client requests (a two-function C library built here with gcc and valgrind's
 headers). The kernels are compiled for a generic x86-64 (``NUMBA_CPU_NAME=generic``): numba keys
 its cache on the CPU, and valgrind's emulated CPU differs from the host's, so without it the
@@ -34,8 +34,8 @@ void cg_toggle(void) { CALLGRIND_TOGGLE_COLLECT; }
 def run_case(case, seconds):
     """One run of the flume ``case`` (seabed, motion, order, elements, dt) for ``seconds``, as
     ``cablefem run`` does it (frames in a temporary folder)."""
-    from cablefem.run import run_scene
-    from cablefem.scenes import flume_scene
+    from cablefem.runs.run import run_scene
+    from cablefem.model.builtin import flume_scene
 
     seabed, motion, order, elements, dt = case
     scene = flume_scene(seabed, motion, elements=int(elements), order=int(order), duration=seconds, dt=float(dt))
@@ -45,7 +45,7 @@ def run_case(case, seconds):
 
 def child(library, case, duration):
     """Inside valgrind: warm up, then count the steps' instructions of one run of ``case``."""
-    import cablefem.marcher as marcher
+    import cablefem.compiled.problem as marcher
 
     lib, inner = ctypes.CDLL(library), marcher.STEPS
 

@@ -9,142 +9,27 @@ saying "interrupted"; the exit status is then 130 or 143 (128 + the signal).
 """
 
 import argparse
-import copy
-import json
 import os
 import signal
 import sys
 import time
 import traceback
-from dataclasses import replace
 
-import numpy as np
-
-from .errors import ConvergenceError, InputError
-
-#: ``cablefem static`` solves a single line of at most this many nodes on the numpy path: loading
-#: numba's compiled kernels costs a process 0.25-0.3 s of CPU (its target and the kernels' cache),
-#: and the numpy path ~9 us more per node and Newton iteration than the compiled one, so it wins
-#: below ~3e4 node-iterations (measured, the whole solve in a fresh process: the default scene,
-#: 41 nodes, 11 iterations, 0.16-0.31 s against 0.41-0.44 s; a 21-node line settling in 634
-#: iterations 0.74 s against 0.88 s). Several lines add their iterations (three 61-node lines on
-#: housner2022's slopes take 1666: 2.05 s against 1.46 s), so they keep the compiled path.
-NUMPY_STATICS_NODES = 200
+from cablefem.errors import ConvergenceError, InputError
 
 
 def _load(path):
-    from .io import load_scene
-    from .scenes import default_scene
+    from cablefem.io import load_scene
+    from cablefem.model.builtin import default_scene
 
     return default_scene() if path is None else load_scene(path)
 
 
-def write_json(path, data):
-    """Write ``data`` as JSON to ``path`` atomically (a temporary file renamed into place), its
-    folder made if missing; OutputError if it cannot be written."""
-    from .io.output import prepare_file, write_atomic
-
-    prepare_file(path)
-    write_atomic(path, json.dumps(data, indent=1))
-
-
-def numpy_statics(scene):
-    """The scene as ``cablefem static`` solves it: a small one (one line of at most
-    ``NUMPY_STATICS_NODES`` nodes, no junction or free body to solve for, no soil, the default
-    assembly) on the numpy path, the catalog loads' numpy faces on precomputed basis data with a
-    sparse LU and the seabed's numpy projection, which gives the compiled path's numbers to
-    round-off (tests/test_startup.py) without loading a compiled kernel; any other scene as it is
-    (docs/outputs.md, ``cablefem static``)."""
-    from .network import coupling
-
-    nodes = sum(line.order * sum(seg.elements for seg in line.segments) + 1 for line in scene.lines)
-    if (len(scene.lines) > 1 or nodes > NUMPY_STATICS_NODES or "soil" in scene.load_settings
-            or scene.solver.assembly != "kernel"
-            or ((scene.points or scene.bodies) and any(coupling(scene.lines, scene.points, scene.bodies)))):
-        return scene
-    seabed = scene.seabed
-    if getattr(seabed, "compiled", False):  # a grid's or a mesh's compiled projection: its numpy twin
-        seabed = copy.copy(seabed)
-        seabed.compiled = False
-    return replace(scene, seabed=seabed, solver=replace(scene.solver, assembly="numpy"))
-
-
-def solve_scene_static(scene):
-    """Static equilibrium of every line of a scene: (list of LineReport, Newton iterations, results).
-    With ``[soil]`` each line follows its pretension path (``cablefem.pretension``)."""
-    return static_network(scene)[:3]
-
-
-def static_network(scene):
-    """Static equilibrium of every line of a scene and of its network's coupling unknowns:
-    (list of LineReport, Newton iterations, results per line (``StaticResult``), network) with
-    network the ``NetworkStatics`` of the junctions and free bodies (None without any)."""
-    from .results import report
-    from .statics import solve_line
-
-    def static_system(line):
-        from .run import build_system  # the run module only for networks and soil
-
-        return build_system(scene, line, dynamic=False)
-
-    network, coupled = None, set()
-    if scene.points or scene.bodies:
-        from .coupling import solve_network
-        from .network import coupling
-
-        if any(coupling(scene.lines, scene.points, scene.bodies)):
-            network = solve_network(scene, static_system,
-                                    tolerance=scene.solver.tolerance, max_iterations=scene.solver.max_iterations)
-            coupled = {k for k, X in enumerate(network.states) if X is not None}
-    reports, results, iterations = [], [], 0 if network is None else network.iterations
-    for k, line in enumerate(scene.lines):
-        if k in coupled:
-            from .statics import StaticResult, scale_free_residual
-
-            system, X = network.systems[k], network.states[k]
-            result = StaticResult(X, 0, network.residual, strategy="network",
-                                  increment=scale_free_residual(system, X))
-        else:
-            if "soil" in scene.load_settings:
-                from .pretension import solve_pretension
-
-                system = static_system(line)
-                result = solve_pretension(system, scene.solver.tolerance, scene.solver.max_iterations)
-            else:
-                system, result = solve_line(line, scene.seabed, scene.contact, scene.environment,
-                                            fit_touchdown=scene.solver.fit_touchdown,
-                                            tolerance=scene.solver.tolerance,
-                                            max_iterations=scene.solver.max_iterations,
-                                            assembly=scene.solver.assembly, sections=scene.load_settings)
-            iterations += result.iterations
-            X = result.X
-        results.append(result)
-        reports.append(report(system, X, result if "soil" in scene.load_settings else None))
-    return reports, iterations, results, network
-
-
-def network_json(scene, reports, network=None):
-    """The ``points`` and ``bodies`` fields of ``cablefem static --json`` (docs/outputs.md)."""
-    from .coupling import network_loads, point_positions
-
-    poses = {} if network is None else network.poses
-    ends = [((rep.anchor_force, rep.nodes[0]), (rep.fairlead_force, rep.nodes[-1])) for rep in reports]
-    forces, bodies = network_loads(scene, ends, poses)
-    positions = point_positions(scene, [rep.nodes for rep in reports])
-    points = {name: {"position": positions[name].tolist(), "force": forces.get(name, np.zeros(3)).tolist()}
-              for name in scene.points}
-    out = {}
-    for name, body in scene.bodies.items():
-        pose = poses.get(name, np.concatenate([body.position, body.rotation]))
-        force, moment = bodies[name]
-        out[name] = {"kind": body.kind, "position": pose[:3].tolist(), "rotation_deg": np.degrees(pose[3:]).tolist(),
-                     "force": force.tolist(), "moment": moment.tolist()}
-    return {"points": points, "bodies": out}
-
-
 def cmd_static(args):
     """``cablefem static [SCENE] [--json FILE]``."""
-    from .io.output import prepare_file
+    from cablefem.io.output import prepare_file, write_json
+    from cablefem.runs.static import network_json
+    from cablefem.statics.scene import numpy_statics, static_network
 
     start = time.perf_counter()
     scene = numpy_statics(_load(args.scene))
@@ -191,9 +76,9 @@ def cmd_static(args):
 
 def cmd_run(args):
     """``cablefem run [SCENE] [--out DIR] [--duration T] [--dt DT]``."""
-    from .io.checks import check_run
-    from .io.output import prepare_folder
-    from .run import run_scene, setting_warnings
+    from cablefem.io.checks import check_run
+    from cablefem.io.output import prepare_folder
+    from cablefem.runs.run import run_scene, setting_warnings
 
     scene = _load(args.scene)
     for value, key in ((args.duration, "--duration"), (args.dt, "--dt")):
@@ -217,8 +102,8 @@ def cmd_run(args):
 
 def cmd_sweep(args):
     """``cablefem sweep SWEEP.toml [--scheduler ADDRESS] [--workers N] [--out DIR] [--retry-failed]``."""
-    from .sweeps import read_sweep, run
-    from .sweeps.engine import check_cluster_options
+    from cablefem.sweeps import read_sweep, run
+    from cablefem.sweeps.engine import check_cluster_options
 
     check_cluster_options(args.scheduler, args.workers)
     spec = read_sweep(args.sweep)
@@ -235,16 +120,16 @@ def cmd_sweep(args):
 
 def cmd_plot(args):
     """``cablefem plot OUT [--png FILE] [--y STAT --x KEY --by KEY]``: a run, or a sweep's table."""
-    from .io.output import prepare_file
+    from cablefem.io.output import prepare_file
 
     if args.png:
         prepare_file(args.png)
     if os.path.isfile(os.path.join(args.out, "sweep.parquet")) or args.out.endswith((".parquet", ".csv")):
-        from .sweeps.plot import plot_sweep
+        from cablefem.sweeps.plot import plot_sweep
 
         path = plot_sweep(args.out, args.png, y=args.y, x=args.x, by=args.by)
     else:
-        from .post import plot_tensions
+        from cablefem.post import plot_tensions
 
         path = plot_tensions(args.out, args.png)
     print(f"wrote {path}")
@@ -290,7 +175,7 @@ def main(argv=None):
     """Entry point: parse arguments, run the command, turn every failure into one line on stderr
     and an exit status: 2 bad input or output location, 3 no convergence, 128 + the signal
     for SIGINT / SIGTERM, 1 a fault of cablefem itself (its traceback with CABLEFEM_DEBUG=1)."""
-    from .io.output import raise_on_sigterm
+    from cablefem.io.output import raise_on_sigterm
 
     args = build_parser().parse_args(argv)
     previous = raise_on_sigterm()

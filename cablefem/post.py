@@ -9,8 +9,8 @@ import os
 
 import numpy as np
 
-from .errors import InputError
-from .io.vtk import read_collection
+from cablefem.errors import InputError
+from cablefem.io.vtk import read_collection
 
 
 def read_tensions(out_dir):

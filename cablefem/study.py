@@ -13,12 +13,15 @@ import numpy as np
 
 
 def start_line(scene, index=0, dt=None, integrator=None, **options):
-    """The integrator of line ``index`` of ``scene`` at its static start (``cablefem.run.start_states``),
+    """The integrator of line ``index`` of ``scene`` at its static start (``cablefem.statics.scene.start_states``),
     as ``run_scene`` starts it: the scene's integrator (or ``integrator``, a class or a registry name),
     its [solver] options, the step dt [s] (default: the scene's), ``options`` overriding any of them
     (``newton``, ``compiled``, ``lumped``, ``tolerance``, ...)."""
-    from .dynamics import INTEGRATORS, integrator_options
-    from .run import boundary_path, build_system, start_states
+    from cablefem.dynamics.registry import INTEGRATORS
+    from cablefem.dynamics.schemes import integrator_options
+    from cablefem.model.network import boundary_path
+    from cablefem.fem.system import build_system
+    from cablefem.statics.scene import start_states
 
     line = scene.lines[index]
     systems = [build_system(scene, each) for each in scene.lines]
@@ -63,8 +66,9 @@ def solve_on_mesh(line_of, seabed, contact, environment, mesh="uniform", touchdo
     ``Line``; ``vertex``: None or an arc length [m] that gets a mesh vertex) on ``mesh``: "uniform"
     (as given), "fitted" (statics' touchdown fitting, ``solve_line``) or "exact-vertex" (a vertex at
     ``touchdown`` [m])."""
-    from .statics import solve_line, solve_static
-    from .system import LineSystem
+    from cablefem.statics.touchdown import solve_line
+    from cablefem.statics.solve import solve_static
+    from cablefem.fem.system import LineSystem
 
     start = time.perf_counter()
     if mesh == "fitted":

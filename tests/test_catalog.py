@@ -7,14 +7,14 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from cablefem.fused import FusedEvaluator, pack_params
+from cablefem.compiled.evaluator import FusedEvaluator, pack_params
 from cablefem.geometry import Plane
 from cablefem.loads import catalog
-from cablefem.line import Joint, Segment
+from cablefem.model.line import Joint, Segment
 from cablefem.loads.current import CurrentProfile
 from cablefem.loads.friction import IsotropicFriction
-from cablefem.scene import Contact
-from cablefem.system import LineSystem
+from cablefem.model.scene import Contact
+from cablefem.fem.system import LineSystem
 
 from test_loads import (assert_tangent_matches_finite_differences, line_state, soil_state, soil_system,
                         system_with_all_loads)
@@ -114,7 +114,7 @@ def test_a_load_declaring_other_parameters_than_it_gives_is_refused():
 
 
 def test_registering_a_load_after_the_kernels_were_built_is_refused():
-    import cablefem.kernels  # noqa: F401  (builds them)
+    import cablefem.compiled.kernels  # noqa: F401  (builds them)
 
     with pytest.raises(RuntimeError, match="register loads before anything compiles"):
         catalog.register(catalog.CATALOG[0])

@@ -1,4 +1,4 @@
-"""Closed-form static lines (cablefem.catenary): MoorPy agreement, seabed slopes,
+"""Closed-form static lines (cablefem.statics.catenary): MoorPy agreement, seabed slopes,
 internal consistency, the Batista & Perkovic case of desire2023 Table 4, bad input."""
 
 import math
@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from cablefem import ConvergenceError, InputError
-from cablefem import _catenary_core as core
-from cablefem.catenary import elastic_catenary, inclined_catenary, inclined_catenary_from_force
+from cablefem.statics import _catenary_core as core
+from cablefem.statics.catenary import elastic_catenary, inclined_catenary, inclined_catenary_from_force
 
 moorpy_catenary = pytest.importorskip("moorpy.Catenary").catenary
 

@@ -208,7 +208,7 @@ def test_bad_file_is_refused_in_one_line(case, tmp_path, capsys):
 
 
 def test_the_corpus_bases_are_valid(tmp_path):
-    from cablefem.scene import load_scene
+    from cablefem.io import load_scene
 
     (tmp_path / "mooring.dat").write_text(BASE_MOORDYN)
     (tmp_path / "grid.txt").write_text(GRID_C)

@@ -113,8 +113,8 @@ def test_run_scene_refuses_a_name_that_would_leave_the_folder(tmp_path):
     from dataclasses import replace
 
     from cablefem.errors import InputError
-    from cablefem.run import run_scene
-    from cablefem.scenes import flume_scene
+    from cablefem.runs.run import run_scene
+    from cablefem.model.builtin import flume_scene
 
     scene = replace(flume_scene("flat"), name="../escaped")
     with pytest.raises(InputError, match="path separator"):

@@ -201,7 +201,7 @@ def test_bad_toml_scene_is_refused_in_one_line(case, tmp_path, capsys):
 
 
 def test_the_corpus_base_scene_is_valid(tmp_path):
-    from cablefem.scene import load_scene
+    from cablefem.io import load_scene
 
     from bad_input import BASE_TOML
 

@@ -1,4 +1,4 @@
-"""Statics of networks with coupling unknowns (issue 18, ``cablefem.coupling``): a junction of three
+"""Statics of networks with coupling unknowns (issue 18, ``cablefem.statics.network``): a junction of three
 lines carrying a buoy and a free body under a steady offset load, each against MoorPy's ``System``
 (the elastic catenary in closed form), and the balance's Jacobian against finite differences."""
 
@@ -7,11 +7,11 @@ import os
 import numpy as np
 import pytest
 
-from cablefem.coupling import Network, solve_network
+from cablefem.statics.network import Network, solve_network
 from cablefem.io import load_scene
-from cablefem.network import rotation
-from cablefem.results import end_forces
-from cablefem.run import build_system
+from cablefem.model.network import rotation
+from cablefem.runs.results import end_forces
+from cablefem.fem.system import build_system
 
 os.environ.setdefault("PYTHONBREAKPOINT", "0")
 RHO, G, D, M, EA = 1025.0, 9.81, 0.1, 60.0, 5.0e8

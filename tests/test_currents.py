@@ -5,15 +5,15 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from cablefem.dynamics import BDF2
+from cablefem.dynamics.schemes import BDF2
 from cablefem.errors import InputError
 from cablefem.geometry import Horizontal
 from cablefem.io.currents import current_profile_setting, read_current_profile
-from cablefem.line import Joint, Line, LineType, Segment
+from cablefem.model.line import Joint, Line, LineType, Segment
 from cablefem.loads.current import MAX_HEIGHTS, CurrentProfile
-from cablefem.scene import Contact, Environment
-from cablefem.statics import solve_static
-from cablefem.system import LineSystem
+from cablefem.model.scene import Contact, Environment
+from cablefem.statics.solve import solve_static
+from cablefem.fem.system import LineSystem
 
 RHO, G = 1025.0, 9.81
 ROPE = LineType("rope", diameter=0.05, mass=3.0, EA=2.0e5, damping=0.05, Cd_normal=1.2, Cd_tangential=0.3,
@@ -113,7 +113,7 @@ def test_a_line_hanging_in_a_sheared_current_takes_the_integrated_shape():
 def test_a_profile_of_one_height_drags_as_the_uniform_current_does(rng):
     """A profile that is the same at every height gives the uniform current's residual and tangent,
     on the numpy face and on the compiled one (to round-off: the same sums)."""
-    from cablefem.fused import FusedEvaluator
+    from cablefem.compiled.evaluator import FusedEvaluator
 
     line = hanging_line(10, 2)
     results, draws = [], rng.standard_normal((2, 21, 3))

@@ -8,13 +8,13 @@ import numpy as np
 import pytest
 
 from cablefem import LineType
-from cablefem.fused import FusedEvaluator
+from cablefem.compiled.evaluator import FusedEvaluator
 from cablefem.geometry import Horizontal
 from cablefem.io.moordyn_input import read_moordyn
 from cablefem.loads import State
 from cablefem.loads.tension import Tension
-from cablefem.scene import Contact, Environment
-from cablefem.system import LineSystem
+from cablefem.model.scene import Contact, Environment
+from cablefem.fem.system import LineSystem
 
 from conftest import make_line
 from test_loads import assert_tangent_matches_finite_differences

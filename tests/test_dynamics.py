@@ -9,14 +9,14 @@ import pytest
 import scipy.linalg
 
 from cablefem import Line, LineType, Segment
-from cablefem.dynamics import BDF2, GeneralizedAlpha
+from cablefem.dynamics.schemes import BDF2, GeneralizedAlpha
 from cablefem.geometry import Horizontal, Plane
 from cablefem.loads.added_mass import AddedMass
 from cablefem.loads.drag import Drag
-from cablefem.motion import fairlead_motion
-from cablefem.scene import Contact, Environment, Friction, Motion
-from cablefem.statics import solve_static
-from cablefem.system import LineSystem
+from cablefem.model.motion import fairlead_motion
+from cablefem.model.scene import Contact, Environment, Friction, Motion
+from cablefem.statics.solve import solve_static
+from cablefem.fem.system import LineSystem
 
 ROPE = LineType("rope", diameter=0.05, mass=10.0, EA=1e5, damping=0.01,
                 Cd_normal=1.2, Cd_tangential=0.2, Ca_normal=1.0, Ca_tangential=0.5)
@@ -186,14 +186,14 @@ def test_anisotropic_friction_acts_axially_and_transversally_with_its_own_coeffi
 
 def test_run_stopped_early_leaves_valid_outputs(tmp_path, monkeypatch):
     pyvista = pytest.importorskip("pyvista")
-    from cablefem import dynamics
+    from cablefem.dynamics.schemes import BDF2
     from cablefem.io.vtk import read_collection
-    from cablefem.run import run_scene
-    from cablefem.scene import default_scene
+    from cablefem.runs.run import run_scene
+    from cablefem.model.builtin import default_scene
 
     scene = default_scene()
     calls = {"n": 0}
-    original = dynamics.BDF2.march
+    original = BDF2.march
 
     def interrupted(self, times):  # run_scene marches from one output time (every 0.1 s) to the next
         calls["n"] += 1
@@ -201,7 +201,7 @@ def test_run_stopped_early_leaves_valid_outputs(tmp_path, monkeypatch):
             raise KeyboardInterrupt
         return original(self, times)
 
-    monkeypatch.setattr(dynamics.BDF2, "march", interrupted)
+    monkeypatch.setattr(BDF2, "march", interrupted)
     with pytest.raises(KeyboardInterrupt):
         run_scene(scene, str(tmp_path), duration=10.0, dt=0.01)
     times, frames = read_collection(tmp_path / f"{scene.name}.pvd")
@@ -222,8 +222,8 @@ def test_adaptive_steps_follow_their_tolerance(tmp_path):
     from dataclasses import replace
 
     from cablefem.post import read_tensions
-    from cablefem.run import run_scene
-    from cablefem.scenes import flume_scene
+    from cablefem.runs.run import run_scene
+    from cablefem.model.builtin import flume_scene
 
     def fairlead_tension(out, **solver):
         scene = flume_scene("flat", "quasi-static", elements=20, duration=4.0)

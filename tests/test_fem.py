@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 from cablefem.geometry import Horizontal, Plane
-from cablefem.scene import Contact, Environment
-from cablefem.system import LineSystem
+from cablefem.model.scene import Contact, Environment
+from cablefem.fem.system import LineSystem
 
 from conftest import make_line
 
@@ -81,7 +81,7 @@ def test_consistent_mass_sums_to_three_times_line_mass(chain, order):
 
 @pytest.mark.parametrize("order", [1, 2, 4])
 def test_mass_matrix_per_component_equals_the_vector_forms_bit_for_bit(chain, order):
-    from cablefem import forms
+    from cablefem.fem import forms
 
     system = LineSystem(make_line(chain, order, elements=7), Horizontal(100.0), Contact(), Environment())
     m = system.props["mass"][:, None] * np.ones_like(system.fem.full.dx)
@@ -95,7 +95,7 @@ def test_mass_matrix_per_component_equals_the_vector_forms_bit_for_bit(chain, or
 def test_line_rule_kept_per_process_is_scikit_fems_bit_for_bit():
     from skfem.quadrature import get_quadrature_line
 
-    from cablefem.fem import _scikit_fem_line_rule
+    from cablefem.fem.discretisation import _scikit_fem_line_rule
 
     for intorder in range(30):
         (x, w), (x_ref, w_ref) = _scikit_fem_line_rule(intorder), get_quadrature_line(intorder)

@@ -1,14 +1,16 @@
-"""The compiled step kernel (cablefem.fused) against the reference numpy loads and assembly."""
+"""The compiled step kernel (cablefem.compiled.evaluator) against the reference numpy loads and assembly."""
 
 from dataclasses import replace
 
 import numpy as np
 import pytest
 
-from cablefem.dynamics import BDF2, GeneralizedAlpha
-from cablefem.fused import FusedEvaluator
-from cablefem.run import boundary_path, build_system, start_states
-from cablefem.scenes import flume_scene
+from cablefem.dynamics.schemes import BDF2, GeneralizedAlpha
+from cablefem.compiled.evaluator import FusedEvaluator
+from cablefem.model.network import boundary_path
+from cablefem.fem.system import build_system
+from cablefem.statics.scene import start_states
+from cablefem.model.builtin import flume_scene
 
 
 def reference(system, X, V, A, v_x, a_x):

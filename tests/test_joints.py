@@ -8,12 +8,12 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from cablefem.dynamics import BDF2
+from cablefem.dynamics.schemes import BDF2
 from cablefem.geometry import Horizontal
-from cablefem.line import Joint, Line, LineType, Segment
-from cablefem.scene import Contact, Environment
-from cablefem.statics import solve_static
-from cablefem.system import LineSystem
+from cablefem.model.line import Joint, Line, LineType, Segment
+from cablefem.model.scene import Contact, Environment
+from cablefem.statics.solve import solve_static
+from cablefem.fem.system import LineSystem
 
 ENV = Environment(water_density=1025.0, gravity=9.81)
 CHAIN = LineType("chain", diameter=0.1, mass=60.0, EA=5.0e8, damping=0.0, Cd_normal=1.2, Ca_normal=1.0)

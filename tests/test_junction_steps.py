@@ -1,4 +1,4 @@
-"""Dynamics of strings that meet at a junction (issue 18, ``cablefem.coupled_steps``): at rest from
+"""Dynamics of strings that meet at a junction (issue 18, ``cablefem.dynamics.junctions``): at rest from
 the network's statics nothing moves, every accepted step solves the coupled equations (each
 string's interior and the junction's balance), and the compiled evaluation gives the numpy path's
 numbers."""
@@ -6,11 +6,14 @@ numbers."""
 import numpy as np
 import pytest
 
-from cablefem.dynamics import INTEGRATORS
+from cablefem.dynamics.registry import INTEGRATORS
 from cablefem.io import load_scene
-from cablefem.network import dynamic_lines
-from cablefem.run import anchor_path, boundary_path, build_system, junction_steps, start_states
-from cablefem.schemes import integrator_options
+from cablefem.model.network import dynamic_lines
+from cablefem.model.network import anchor_path, boundary_path
+from cablefem.fem.system import build_system
+from cablefem.runs.run import junction_steps
+from cablefem.statics.scene import start_states
+from cablefem.dynamics.schemes import integrator_options
 
 CROWFOOT = """\
 name = "crowfoot"
@@ -128,8 +131,8 @@ def test_the_strings_forces_at_the_junction_are_their_own(tmp_path):
     junction's clump reported the clump's load with its force: 2.2 % low at rest in tensions.csv),
     and under a surge the strings' forces balance the clump's weight, buoyancy, drag and inertia
     (written out here)."""
-    from cablefem.coupling import solve_network
-    from cablefem.results import end_forces
+    from cablefem.statics.network import solve_network
+    from cablefem.runs.results import end_forces
 
     scene, integrators, group, _ = start(tmp_path, CROWFOOT + SURGE)
     statics = solve_network(scene, lambda line: build_system(scene, line, dynamic=False))
@@ -154,7 +157,7 @@ def test_the_strings_forces_at_the_junction_are_their_own(tmp_path):
 
 
 def test_the_compiled_loop_gives_the_python_steps(tmp_path):
-    """``cablefem.junction_march`` (the group's steps in one numba call) against the Python loop of
+    """``cablefem.compiled.junctions`` (the group's steps in one numba call) against the Python loop of
     ``JunctionSteps`` on the same compiled evaluations: the same iterations and evaluations, forces
     (the junction ends' without the clump riding on one of them) equal to round-off (4e-12 of the
     largest force measured: the same arithmetic in another order; 1e-10 leaves room for other

@@ -20,8 +20,9 @@ from cablefem.loads.added_mass import AddedMass
 from cablefem.loads.contact import SeabedContact
 from cablefem.loads.drag import Drag, tangential_drag_from_moordyn
 from cablefem.loads.friction import AnisotropicFriction, IsotropicFriction, friction_law, saturation
-from cablefem.scene import Contact, Environment, Friction
-from cablefem.system import LineSystem, contact_damping
+from cablefem.model.scene import Contact, Environment, Friction
+from cablefem.fem.system import LineSystem
+from cablefem.loads.contact import contact_damping
 
 from conftest import make_line
 

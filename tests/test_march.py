@@ -1,16 +1,20 @@
-"""Compiled BDF2 steps (cablefem.march) against the per-step Python path, and their pieces."""
+"""Compiled BDF2 steps (cablefem.compiled.steps) against the per-step Python path, and their pieces."""
 
 import numpy as np
 import pytest
 from scipy.linalg import solve_banded
 
-from cablefem.dynamics import BDF2, Integrator
+from cablefem.dynamics.schemes import BDF2
+from cablefem.dynamics.integrator import Integrator
 from cablefem.geometry import DepthGrid
-from cablefem.banded import lu_factor, lu_solve
-from cablefem.motion import fairlead_motion
-from cablefem.run import StepControl, boundary_path, build_system, start_states
-from cablefem.scene import Motion
-from cablefem.scenes import flume_scene
+from cablefem.compiled.banded import lu_factor, lu_solve
+from cablefem.model.motion import fairlead_motion
+from cablefem.dynamics.step_control import StepControl
+from cablefem.model.network import boundary_path
+from cablefem.fem.system import build_system
+from cablefem.statics.scene import start_states
+from cablefem.model.scene import Motion
+from cablefem.model.builtin import flume_scene
 
 
 def integrator(scene, dt, compiled_steps, tolerance=1e-6, newton="auto", max_iterations=12):

@@ -1,14 +1,17 @@
-"""Compiled generalised-alpha steps (cablefem.march, the scheme a run-time value of its Problem)
+"""Compiled generalised-alpha steps (cablefem.compiled.steps, the scheme a run-time value of its Problem)
 against the same scheme on the Python ops: the same attempts, iterations and halvings, the same
 numbers to round-off."""
 
 import numpy as np
 import pytest
 
-from cablefem import policy
-from cablefem.dynamics import GeneralizedAlpha
-from cablefem.run import StepControl, boundary_path, build_system, start_states
-from cablefem.scenes import flume_scene
+from cablefem.dynamics import policy
+from cablefem.dynamics.schemes import GeneralizedAlpha
+from cablefem.dynamics.step_control import StepControl
+from cablefem.model.network import boundary_path
+from cablefem.fem.system import build_system
+from cablefem.statics.scene import start_states
+from cablefem.model.builtin import flume_scene
 from test_march import undulating_grid
 
 
@@ -112,7 +115,7 @@ def stop_scene(case):
     chain's snap with seabed friction (dt 0.005 s, 12 s)."""
     from dataclasses import replace
 
-    from cablefem.scenes import flume_scene
+    from cablefem.model.builtin import flume_scene
     from validation.moordyn_aligned.run import MOTIONS, aligned_scene
 
     if case == "slow, frictionless":
@@ -126,7 +129,7 @@ def stop_scene(case):
 
 
 def alpha_integrator(scene, dt):
-    from cablefem.schemes import integrator_options
+    from cablefem.dynamics.schemes import integrator_options
 
     line = scene.lines[0]
     system = build_system(scene, line)
@@ -145,7 +148,7 @@ def test_first_iteration_stop_keeps_the_residual_below_the_tolerance(monkeypatch
     stops ended above the tolerance, at 1.97x at most; only steps solved with kept factors measure
     it now. The compiled steps stop at the same steps (the same iterations and evaluations) and end
     at the same numbers to round-off."""
-    from cablefem import python_ops
+    from cablefem.dynamics import python_ops
 
     scene, dt, times = stop_scene(case)
     norms, after_stops = [0], []
@@ -192,7 +195,7 @@ def test_a_contraction_measured_on_one_path_is_not_used_on_the_other(monkeypatch
     an earlier such attempt, current by their coefficients. The contraction the first-iteration
     stop trusts was measured with the compiled factors: the Python attempt starts without one, and
     the compiled steps after it too (``CompiledSteps.attempt``)."""
-    from cablefem import python_ops
+    from cablefem.dynamics import python_ops
 
     scene, dt, times = stop_scene("slow, frictionless")
     integ = alpha_integrator(scene, dt)

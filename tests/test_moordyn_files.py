@@ -15,7 +15,7 @@ import pytest
 from cablefem.cli import main
 from cablefem.errors import InputError
 from cablefem.io import load_scene
-from cablefem.network import check_no_coupling, coupling
+from cablefem.model.network import check_no_coupling, coupling
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "moordyn")
 

@@ -9,9 +9,9 @@ import pytest
 
 from cablefem.errors import InputError
 from cablefem.io import load_scene
-from cablefem.motion import body_motion
-from cablefem.network import Body, BodyPointPath, rotation, rotation_rates
-from cablefem.scene import Motion
+from cablefem.model.motion import body_motion
+from cablefem.model.network import Body, BodyPointPath, rotation, rotation_rates
+from cablefem.model.scene import Motion
 
 HERE = os.path.dirname(__file__)
 
@@ -221,9 +221,9 @@ def test_a_run_reports_each_point_and_body_force_and_the_bodys_moment(tmp_path):
 
     import pandas as pd
 
-    from cablefem.motion import body_motion
-    from cablefem.network import rotation
-    from cablefem.run import run_scene
+    from cablefem.model.motion import body_motion
+    from cablefem.model.network import rotation
+    from cablefem.runs.run import run_scene
 
     motion = """[bodies.platform.motion]
 kind = "harmonic"
@@ -260,7 +260,7 @@ every = 3.0
     assert summary["completed"]
     import meshio
 
-    from cablefem.network_output import body_reference
+    from cablefem.runs.network_output import body_reference
 
     frame = meshio.read(sorted((tmp_path / "out").glob("net_*.vtu"))[-1])  # at t = 3 s
     kinds = np.concatenate(frame.cell_data["network"])

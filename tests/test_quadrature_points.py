@@ -9,10 +9,12 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from cablefem.dynamics import GeneralizedAlpha
+from cablefem.dynamics.schemes import GeneralizedAlpha
 from cablefem.errors import InputError
-from cablefem.run import boundary_path, build_system, start_states
-from cablefem.scenes import flume_scene
+from cablefem.model.network import boundary_path
+from cablefem.fem.system import build_system
+from cablefem.statics.scene import start_states
+from cablefem.model.builtin import flume_scene
 
 
 def contact_error(points, kink=3.37):

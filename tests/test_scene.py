@@ -9,8 +9,9 @@ import pytest
 
 from cablefem import InputError
 from cablefem.io.moordyn_input import damping_time
-from cablefem.scene import default_scene, load_scene
-from cablefem.scenes import flume_scene
+from cablefem.model.builtin import default_scene
+from cablefem.io import load_scene
+from cablefem.model.builtin import flume_scene
 
 EXAMPLES = os.path.join(os.path.dirname(__file__), "..", "examples")
 
@@ -310,8 +311,8 @@ def test_bad_toml_gives_one_line_naming_file_key_and_reason(tmp_path, edits, key
 
 
 def test_integrators_a_scene_may_name_are_those_dynamics_implements():
-    from cablefem.dynamics import INTEGRATORS as implemented
-    from cablefem.scene import INTEGRATORS as accepted
+    from cablefem.dynamics.registry import INTEGRATORS as implemented
+    from cablefem.dynamics.registry import INTEGRATORS as accepted
 
     assert set(accepted) == set(implemented)
 

@@ -10,7 +10,7 @@ from cablefem.geometry import DepthGrid, Horizontal, Plane, TriangulatedSurface
 from cablefem.geometry import _vertex_normal as vn
 from cablefem.geometry.planes import _grid_triangles
 from cablefem.geometry.readers import moordyn_c
-from cablefem.scene import load_scene
+from cablefem.io import load_scene
 from verification.seabed_equivalence import run as study
 
 

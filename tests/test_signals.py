@@ -147,9 +147,9 @@ def test_an_unwritable_output_folder_is_refused_before_any_work():
     import shutil
     import tempfile
 
-    from cablefem.scene import load_scene
+    from cablefem.io import load_scene
 
-    importlib.import_module("cablefem.run")  # while the installation can still be read
+    importlib.import_module("cablefem.runs.run")  # while the installation can still be read
 
     folder = tempfile.mkdtemp(prefix="cablefem-locked-")
     out = os.path.join(folder, "locked")

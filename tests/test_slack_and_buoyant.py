@@ -1,5 +1,5 @@
 """Statics and dynamics of lines longer than they need, lines whose two ends meet, buoyant lines and
-lazy waves (issue 14): the starting shapes of ``cablefem.start_shape``, the partially submerged
+lazy waves (issue 14): the starting shapes of ``cablefem.statics.start_shape``, the partially submerged
 cross-section of ``cablefem.loads.gravity`` and the scale-free convergence test of statics."""
 
 import numpy as np
@@ -7,18 +7,20 @@ import pytest
 from moorpy.Catenary import catenary
 
 from cablefem import ConvergenceError, Line, LineType, Segment
-from cablefem.catenary import elastic_catenary
-from cablefem.dynamics import BDF2
-from cablefem.fused import FusedEvaluator
+from cablefem.statics.catenary import elastic_catenary
+from cablefem.dynamics.schemes import BDF2
+from cablefem.compiled.evaluator import FusedEvaluator
 from cablefem.geometry import Horizontal
 from cablefem.loads import State
 from cablefem.loads.gravity import Weight, submerged_fraction, submerged_integral
-from cablefem.results import end_forces, report
-from cablefem.run import build_system, start_states
-from cablefem.scene import Contact, Environment, Motion, Scene, Solver
-from cablefem.start_shape import float_level, initial_shape
-from cablefem.statics import solve_line, solve_static
-from cablefem.system import LineSystem
+from cablefem.runs.results import end_forces, report
+from cablefem.fem.system import build_system
+from cablefem.statics.scene import start_states
+from cablefem.model.scene import Contact, Environment, Motion, Scene, Solver
+from cablefem.statics.start_shape import float_level, initial_shape
+from cablefem.statics.touchdown import solve_line
+from cablefem.statics.solve import solve_static
+from cablefem.fem.system import LineSystem
 
 ENV = Environment()
 CHAIN = LineType("chain", diameter=0.3539, mass=835.4, EA=3.15e9, damping=0.001, Cd_normal=2.5,
@@ -232,7 +234,7 @@ def test_a_dynamic_step_that_fails_says_its_residual():
                   motion=Motion(kind="harmonic", amplitude=(40.0, 0.0, 0.0), period=2.0))
     system = build_system(scene, scene.lines[0])
     X0 = start_states(scene, systems=[system])[0][0]
-    from cablefem.run import boundary_path
+    from cablefem.model.network import boundary_path
 
     integ = BDF2(system, X0, boundary_path(scene, scene.lines[0]), dt=0.5, tolerance=1e-12, min_dt=0.25,
                  max_iterations=2)

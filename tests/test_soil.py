@@ -9,14 +9,14 @@ import textwrap
 import numpy as np
 import pytest
 
-from cablefem.balance import step_work, stored_energy
+from cablefem.dynamics.energy import step_work, stored_energy
 from cablefem.geometry import Horizontal, Plane
 from cablefem.io import load_scene
 from cablefem.loads import State
 from cablefem.loads.soil import Soil
-from cablefem.pretension import LoadPath, resting_depth, solve_pretension
-from cablefem.results import end_forces
-from cablefem.run import build_system
+from cablefem.statics.pretension import LoadPath, resting_depth, solve_pretension
+from cablefem.runs.results import end_forces
+from cablefem.fem.system import build_system
 
 #: a small line in soil: a chain 3 m below the mudline of 30 m of water, 70 m to a fairlead 5 m deep
 SMALL = """
@@ -119,7 +119,7 @@ def test_reaction_vanishes_continuously_at_the_surface_and_is_zero_above():
 
 
 def test_both_faces_write_the_same_trial_history(rng):
-    from cablefem.fused import FusedEvaluator
+    from cablefem.compiled.evaluator import FusedEvaluator
 
     from test_loads import soil_state, soil_system
 
@@ -168,7 +168,7 @@ def test_a_dragged_lying_chain_has_the_friction_of_its_depth(tmp_path):
     # at its resting depth still, its weight
     scene = load_scene(small_scene(tmp_path, anchor_z=-30.0))
     system = build_system(scene, scene.lines[0], dynamic=False)
-    from cablefem.pretension import start_laid
+    from cablefem.statics.pretension import start_laid
 
     X, end = start_laid(system)
     ends = np.array([system.line.anchor, end])
@@ -235,8 +235,9 @@ def test_plastic_work_is_never_negative_and_the_path_s_energy_balance_closes(sma
 
 
 def test_a_run_dissipates_plastic_work_at_every_step_and_its_energy_balance_closes(tmp_path):
-    from cablefem.dynamics import BDF2
-    from cablefem.run import boundary_path, start_states
+    from cablefem.dynamics.schemes import BDF2
+    from cablefem.model.network import boundary_path
+    from cablefem.statics.scene import start_states
 
     extra = '[motion]\nkind = "harmonic"\namplitude = [2.0, 0.0, 1.0]\nperiod = 4.0\nramp = 2.0\n'
     scene = load_scene(small_scene(tmp_path, extra=extra, line_type="Cd_normal = 0.0\nCa_normal = 0.0"))
@@ -350,8 +351,9 @@ def test_compiled_steps_commit_the_history_of_the_converged_point_as_the_python_
     # a step that converges on its increment evaluates its end elements only for the reactions; a
     # line keeping history evaluates them all, so that every point commits the converged state's
     # (before: 645 iterations against 643, the plastic slip 4e-11 of its largest apart)
-    from cablefem.dynamics import BDF2
-    from cablefem.run import boundary_path, start_states
+    from cablefem.dynamics.schemes import BDF2
+    from cablefem.model.network import boundary_path
+    from cablefem.statics.scene import start_states
 
     extra = '[motion]\nkind = "harmonic"\namplitude = [2.0, 0.0, 1.0]\nperiod = 4.0\nramp = 2.0\n'
     runs = []

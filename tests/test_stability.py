@@ -191,7 +191,7 @@ def test_generalized_alpha_at_its_default_rho_inf_keeps_a_stiff_chain_bounded(re
 def test_run_warns_before_it_starts_when_rho_inf_is_unsafe():
     from dataclasses import replace
 
-    from cablefem.run import setting_warnings
+    from cablefem.runs.run import setting_warnings
 
     scene = stability.toy_scene(3e5, 0.01, "generalized-alpha", 0.8, depth=1000.0, EA=5.055e11)
     assert any("rho_inf" in w for w in setting_warnings(scene))

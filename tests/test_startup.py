@@ -8,9 +8,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cablefem.cli import NUMPY_STATICS_NODES, numpy_statics, static_network
+from cablefem.statics.scene import NUMPY_STATICS_NODES, numpy_statics, static_network
 from cablefem.io import load_scene
-from cablefem.scenes import default_scene, flume_scene
+from cablefem.model.builtin import default_scene, flume_scene
 
 
 

@@ -9,13 +9,15 @@ import numpy as np
 import pytest
 
 from cablefem import Line, Segment
-from cablefem.catenary import elastic_catenary
+from cablefem.statics.catenary import elastic_catenary
 from cablefem.geometry import Horizontal, Plane
-from cablefem.scene import Contact, Environment
-from cablefem.scenes import flume_scene, table5_chain
-from cablefem.statics import newton, solve_line, solve_static
-from cablefem.system import LineSystem
-from cablefem.results import report
+from cablefem.model.scene import Contact, Environment
+from cablefem.model.builtin import flume_scene, table5_chain
+from cablefem.statics.newton import newton
+from cablefem.statics.touchdown import solve_line
+from cablefem.statics.solve import solve_static
+from cablefem.fem.system import LineSystem
+from cablefem.runs.results import report
 
 
 def flat_system(elements=40, order=1, stiffness=3e5):
@@ -202,8 +204,8 @@ def _bumpy_grid():
 def test_compiled_statics_equal_the_reference_assembly(order, seabed, monkeypatch):
     """Statics Newton through the fused kernel (banded LU) and through LineSystem.evaluate
     (sparse LU) take the same iterations to the same state, from the catenary guess, where the
-    compressive start-up law applies first (statics._tension_only)."""
-    from cablefem.fused import FusedEvaluator
+    compressive start-up law applies first (statics.tension_only)."""
+    from cablefem.compiled.evaluator import FusedEvaluator
 
     scene = flume_scene("flat", elements=20, order=order)
     bed = scene.seabed if seabed is None else _bumpy_grid()

@@ -15,10 +15,11 @@ import numpy as np
 import pytest
 
 import cablefem
-from cablefem.cli import main, solve_scene_static
+from cablefem.cli import main
+from cablefem.statics.scene import solve_scene_static
 from cablefem.errors import ConvergenceError
 from cablefem.io.toml_scene import read_toml_scene
-from cablefem.run import run_scene
+from cablefem.runs.run import run_scene
 from cablefem.sweeps import read_sweep, run
 from cablefem.sweeps.table import read_table
 from cablefem.sweeps.tasks import series_columns

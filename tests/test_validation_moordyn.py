@@ -38,7 +38,7 @@ import pytest
 pytest.importorskip("moordyn")
 pytest.importorskip("moorpy")
 
-from cablefem.scene import load_scene  # noqa: E402
+from cablefem.io import load_scene  # noqa: E402
 
 from validation.moordyn import peer  # noqa: E402
 from validation.moordyn import run as study  # noqa: E402

@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pytest
 
-from cablefem.catenary import elastic_catenary
+from cablefem.statics.catenary import elastic_catenary
 
 from validation.spread_mooring import run as study
 

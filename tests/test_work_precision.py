@@ -141,7 +141,7 @@ def test_time_error_split_puts_a_ringing_in_its_band():
     # ringing of 1 % of the mean has an RMS difference of 1 % / sqrt(2) over the window, all of
     # it in the 1-2 Hz band; the two candidate frequencies are their closed forms, the contact's
     # sqrt(k d / (m + m_a)) / 2 pi and the whole line's first axial mode sqrt(EA / m) / 2 L
-    from cablefem.scenes import table5_chain
+    from cablefem.model.builtin import table5_chain
     from verification.work_precision.time_error import axial_frequency, contact_frequency, split
 
     t = np.arange(0.0, 40.0, 0.01)

@@ -78,11 +78,13 @@ def _write(folder, name, text):
 def _uniform(scene):
     """The uniform force is extra weight: statics against the catenary of w + 500 N/m; both faces;
     a run held still stays at the static state."""
-    from cablefem.catenary import elastic_catenary
-    from cablefem.cli import solve_scene_static
-    from cablefem.fused import FusedEvaluator
-    from cablefem.run import boundary_path, build_system, start_states
-    from cablefem.schemes import BDF2
+    from cablefem.statics.catenary import elastic_catenary
+    from cablefem.statics.scene import solve_scene_static
+    from cablefem.compiled.evaluator import FusedEvaluator
+    from cablefem.model.network import boundary_path
+    from cablefem.fem.system import build_system
+    from cablefem.statics.scene import start_states
+    from cablefem.dynamics.schemes import BDF2
 
     reports, _, _ = solve_scene_static(scene)
     line = scene.lines[0]
@@ -111,7 +113,7 @@ def _plastic(scene, folder):
     """Plastic work over the second period against the closed form, with and without halved steps,
     compiled and in Python; the rest positions in a run's frames."""
     from cablefem.io.vtk import read_collection
-    from cablefem.run import run_scene
+    from cablefem.runs.run import run_scene
 
     runs = {}
     for label, iterations, compiled in (("plain", 12, True), ("halved", 2, True), ("python", 2, False)):
@@ -131,8 +133,10 @@ def _plastic(scene, folder):
 def _cycle(scene, iterations, compiled):
     """One run over two periods in steps of 1 s, full Newton with at most ``iterations`` iterations:
     plastic work of the second period, its closed form, rejections, the end state."""
-    from cablefem.run import boundary_path, build_system, start_states
-    from cablefem.schemes import BDF2
+    from cablefem.model.network import boundary_path
+    from cablefem.fem.system import build_system
+    from cablefem.statics.scene import start_states
+    from cablefem.dynamics.schemes import BDF2
 
     line = scene.lines[0]
     system = build_system(scene, line)

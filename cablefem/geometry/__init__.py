@@ -10,9 +10,9 @@ scene on a plane loads none of that machinery (start-up of ``cablefem static``).
 
 from importlib import import_module
 
-from .base import Projection, Seabed
-from .planes import Horizontal, Plane
-from .simplify import choose_seabed, least_squares_plane, mean_depth_horizontal, simplify  # light: planes only
+from cablefem.geometry.base import Projection, Seabed
+from cablefem.geometry.planes import Horizontal, Plane
+from cablefem.geometry.simplify import choose_seabed, least_squares_plane, mean_depth_horizontal, simplify  # light: planes only
 
 #: the package's other names -> the module that holds each
 _LAZY = {"TriangulatedSurface": "triangulated", "DepthGrid": "grid", "read_seabed": "readers",

@@ -11,7 +11,7 @@ independent of how a face is split into coplanar pieces.
 
 import numpy as np
 
-from ..errors import InputError
+from cablefem.errors import InputError
 
 #: a face whose unit normal has |n_z| at most this is vertical, not a seabed
 VERTICAL_TOLERANCE = 1e-9

@@ -29,7 +29,7 @@ The triangle below a point in plan is the same search on the table with vertical
 
 import numpy as np
 
-from . import _vertex_normal as vn
+from cablefem.geometry import _vertex_normal as vn
 
 #: walk steps from the start triangle, and nearest centroids tried after them
 WALK_STEPS = 8

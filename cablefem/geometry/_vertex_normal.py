@@ -39,7 +39,7 @@ arrays gathered from a packed table (30, k) built once by ``triangle_table``
 
 import numpy as np
 
-from ._cubic import cubic_roots, polish
+from cablefem.geometry._cubic import cubic_roots, polish
 
 #: rows of the packed per-triangle table
 P0, E1, E2, N0, DN1, DN2, G0, G1, G2 = (slice(3 * i, 3 * i + 3) for i in range(9))

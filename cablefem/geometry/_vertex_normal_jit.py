@@ -27,7 +27,7 @@ that one triangle's data are contiguous; the outputs are packed in one
 import numpy as np
 from numba import njit
 
-from ._vertex_normal import INSIDE_TOLERANCE
+from cablefem.geometry._vertex_normal import INSIDE_TOLERANCE
 
 #: rows of the packed output (OUTPUTS, n)
 GAP, DIRECTION, CLOSEST = 0, slice(1, 4), slice(4, 7)

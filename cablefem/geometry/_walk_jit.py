@@ -8,7 +8,7 @@ the walk to the neighbour across the most violated edge (at most
 ``WALK_STEPS`` steps) until a prism holds the point at its nearest root,
 then ``_vertex_normal_jit.evaluate`` for every point. ``TriangulatedSurface``
 calls it for its compiled path and hands its tables and warm start to
-``cablefem.march``, which calls it inside the compiled steps.
+``cablefem.compiled.steps``, which calls it inside the compiled steps.
 
 A point the walk does not place (held by no prism within the walk, or by a
 prism only at a far root, beyond the mesh's edge at the last call, moved
@@ -16,7 +16,7 @@ farther than its triangle is large, or a cubic Halley does not settle) is
 reported, and ``TriangulatedSurface`` places it with the numpy search.
 
 ``project`` takes its arrays in three named tuples, ``Surface``, ``Start``
-and ``Result`` (``cablefem.march`` nests them in its ``Projector``); what it
+and ``Result`` (``cablefem.compiled.steps`` nests them in its ``Projector``); what it
 computes (``mode``) and the rows of its packed outputs are
 ``_vertex_normal_jit``'s, named here too for its callers.
 """
@@ -26,8 +26,8 @@ from collections import namedtuple
 import numpy as np
 from numba import njit
 
-from ._vertex_normal_jit import (CLOSEST, DIRECTION, DIRECTION_GRADIENT, EVERYTHING, GAP, GAP_AND_DIRECTION,
-                                 GAP_GRADIENT, GAP_ONLY, JIT, OUTPUTS, evaluate, is_inside, solve)
+from cablefem.geometry._vertex_normal_jit import (CLOSEST, DIRECTION, DIRECTION_GRADIENT, EVERYTHING, GAP,
+    GAP_AND_DIRECTION, GAP_GRADIENT, GAP_ONLY, JIT, OUTPUTS, evaluate, is_inside, solve)
 
 __all__ = ["CLOSEST", "DIRECTION", "DIRECTION_GRADIENT", "EVERYTHING", "GAP", "GAP_AND_DIRECTION", "GAP_GRADIENT",
            "GAP_ONLY", "OUTPUTS", "Result", "Start", "Surface", "project"]

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError
+from cablefem.errors import InputError
 
 
 def write_seabed_vtu(seabed, path, bounds=None):

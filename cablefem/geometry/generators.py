@@ -10,8 +10,8 @@ listed in ``flume_step`` and in docs/seabeds.md.
 
 import numpy as np
 
-from ..errors import InputError
-from .grid import DepthGrid
+from cablefem.errors import InputError
+from cablefem.geometry.grid import DepthGrid
 
 #: desire2023 Sec. 4.1 / Fig. 10-11: Froude scale of the flume tests
 FLUME_SCALE = 75.0
@@ -223,8 +223,8 @@ def triangulated_step(grid, band=2.0, spacing=25.0):
     it: extra node lines at the corners +- ``band`` [m] keep that turn within the band,
     and the flat floors are split every ``spacing`` [m].
     """
-    from .planes import _grid_triangles
-    from .triangulated import TriangulatedSurface
+    from cablefem.geometry.planes import _grid_triangles
+    from cablefem.geometry.triangulated import TriangulatedSurface
 
     corners = grid.x[1:-1]
     regular = np.arange(grid.x[0], grid.x[-1] + spacing, spacing)

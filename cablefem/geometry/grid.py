@@ -23,9 +23,9 @@ the same bits (``tests/test_projection_compiled.py``).
 import numpy as np
 from numba import njit
 
-from ..errors import InputError
-from .base import Projection, Seabed
-from .planes import _grid_triangles
+from cablefem.errors import InputError
+from cablefem.geometry.base import Projection, Seabed
+from cablefem.geometry.planes import _grid_triangles
 
 
 def _axis(values, name):
@@ -220,12 +220,12 @@ class DepthGrid(Seabed):
 
     def least_squares_plane(self):
         """The plane fitted to the grid nodes in the least-squares sense (desire2023 Sec. 5)."""
-        from .simplify import least_squares_plane
+        from cablefem.geometry.simplify import least_squares_plane
         return least_squares_plane(self.vertices)
 
     def mean_depth_horizontal(self):
         """The horizontal seabed at the mean elevation of the grid nodes (desire2023 Sec. 5)."""
-        from .simplify import mean_depth_horizontal
+        from cablefem.geometry.simplify import mean_depth_horizontal
         return mean_depth_horizontal(self.vertices)
 
     def describe(self):

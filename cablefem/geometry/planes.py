@@ -3,8 +3,8 @@
 
 import numpy as np
 
-from ..errors import InputError
-from .base import Projection, Seabed
+from cablefem.errors import InputError
+from cablefem.geometry.base import Projection, Seabed
 
 
 def _grid_triangles(nx, ny):

@@ -10,8 +10,8 @@ the triangulated surface.
 
 import numpy as np
 
-from ..errors import InputError
-from .planes import Horizontal, Plane
+from cablefem.errors import InputError
+from cablefem.geometry.planes import Horizontal, Plane
 
 
 def _points(points):

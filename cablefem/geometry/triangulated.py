@@ -34,10 +34,10 @@ Paths (vectorised over points):
 """
 import numpy as np
 
-from ..errors import InputError
-from . import _mesh, _vertex_normal as vn, _walk_jit as walk
-from ._search import WALK_STEPS, PrismSearch
-from .base import Projection, Seabed
+from cablefem.errors import InputError
+from cablefem.geometry import _mesh, _vertex_normal as vn, _walk_jit as walk
+from cablefem.geometry._search import WALK_STEPS, PrismSearch
+from cablefem.geometry.base import Projection, Seabed
 
 #: calls remembered for warm starts (one per line sharing the seabed)
 WARM_STATES = 8
@@ -197,7 +197,7 @@ class TriangulatedSurface(PrismSearch, Seabed):
 
     def walk_start(self, points):
         """What a compiled caller running ``_walk_jit.project`` itself needs for points (n, 3) [m]
-        (``cablefem.march``): the surface's tables (a ``_walk_jit.Surface``), its typical triangle
+        (``cablefem.compiled.steps``): the surface's tables (a ``_walk_jit.Surface``), its typical triangle
         size [m] and the warm start of the remembered call nearest to them (a ``_walk_jit.Start``:
         origin (3, n), triangles (n,), heights (n,), unheld (n,)), or a cold start from the nearest
         centroids. ``walk_end`` hands the last call back."""

@@ -27,8 +27,8 @@ import math
 
 import numpy as np
 
-from ..errors import InputError
-from . import validate as v
+from cablefem.errors import InputError
+from cablefem.io import validate as v
 
 #: the ramp's smoothstep S(u) = 3u^2 - 2u^3 has |dS/dt| <= 1.5 / ramp, |d2S/dt2| <= 6 / ramp^2
 _RAMP_SPEED, _RAMP_ACCELERATION = 1.5, 6.0

@@ -13,10 +13,10 @@ import os
 
 import numpy as np
 
-from ..errors import InputError
-from ..geometry.readers import parse_number
-from ..loads.current import CurrentProfile
-from . import validate as v
+from cablefem.errors import InputError
+from cablefem.geometry.readers import parse_number
+from cablefem.loads.current import CurrentProfile
+from cablefem.io import validate as v
 
 #: the file MoorDyn-C reads, in the input file's folder, with ``Currents 1``
 MOORDYN_FILE = "current_profile.txt"

@@ -9,11 +9,11 @@ and IDs are ASCII (``str.isdigit`` and ``float`` would take other scripts' digit
 sane limits of ``validate.LIMITS``.
 
 Mapping (each conversion checked against the MoorDyn 2.7 library, docs/scene.md):
-- BODIES and POINTS become ``cablefem.network`` Bodies and Points (``moordyn_network``), each
+- BODIES and POINTS become ``cablefem.model.network`` Bodies and Points (``moordyn_network``), each
   MoorDyn line a ``Line`` between two of them; ``network.strings`` joins lines through free points
   that join exactly two line ends into ONE multi-segment line named ``line1+2``, its most fixed end
   first. Junctions of three or more line ends and free bodies are read as they are: the statics
-  solve them (``cablefem.coupling``), a run refuses what it cannot step (``network.check_no_coupling``);
+  solve them (``cablefem.statics.network``), a run refuses what it cannot step (``network.check_no_coupling``);
 - ``Currents 1``: the steady profile of ``current_profile.txt`` beside the file (``io.currents``);
 - BA >= 0 is the internal damping coefficient [N s]: beta = BA / EA [s];
   BA < 0 is -zeta, MoorDyn's BA = zeta (UnstrLen / NumSegs) sqrt(EA m);
@@ -35,16 +35,17 @@ import os
 import re
 from dataclasses import replace
 
-from ..errors import InputError
-from ..geometry import Horizontal, choose_seabed
-from ..geometry.readers import is_number
-from ..line import Line, LineType, Segment
-from ..network import point_position, strings as network_strings
-from ..scene import Contact, Environment, Friction, Scene, Solver
-from . import validate as v
-from .currents import MOORDYN_FILE, read_current_profile
-from .moordyn_network import line_end, read_bodies, read_points
-from .moordyn_sections import TABLE_COLUMNS, at as _at, parse_sections, refuse, split_sections, value as _value
+from cablefem.errors import InputError
+from cablefem.geometry import Horizontal, choose_seabed
+from cablefem.geometry.readers import is_number
+from cablefem.model.line import Line, LineType, Segment
+from cablefem.model.network import point_position, strings as network_strings
+from cablefem.model.scene import Contact, Environment, Friction, Scene, Solver
+from cablefem.io import validate as v
+from cablefem.io.currents import MOORDYN_FILE, read_current_profile
+from cablefem.io.moordyn_network import line_end, read_bodies, read_points
+from cablefem.io.moordyn_sections import (TABLE_COLUMNS, at as _at, parse_sections, refuse, split_sections,
+    value as _value)
 
 NO_MOTION_NOTE = "MoorDyn files have no fairlead motion: coupled points stay fixed"
 BODY_NO_MOTION_NOTE = ("MoorDyn files have no body motion: coupled bodies stay where the file puts them (a TOML "

@@ -1,4 +1,4 @@
-"""BODIES, POINTS and line ends of a MoorDyn v2 file as ``cablefem.network`` Bodies and Points, read
+"""BODIES, POINTS and line ends of a MoorDyn v2 file as ``cablefem.model.network`` Bodies and Points, read
 as MoorDyn-C reads them (``MoorDyn2.cpp``: ``readBody``, the POINTS rows, the LINES ends).
 
 - BODIES (ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG I Volume CdA Ca): Fixed/Anchor/Fix -> fixed,
@@ -18,11 +18,11 @@ import re
 
 import numpy as np
 
-from ..errors import InputError
-from ..geometry.readers import is_integer
-from ..network import Body, Point
-from . import validate as v
-from .moordyn_sections import at, refuse, value
+from cablefem.errors import InputError
+from cablefem.geometry.readers import is_integer
+from cablefem.model.network import Body, Point
+from cablefem.io import validate as v
+from cablefem.io.moordyn_sections import at, refuse, value
 
 FIXED = ("ANCHOR", "FIXED", "FIX")
 COUPLED = ("VESSEL", "VES", "COUPLED", "CPLD")

@@ -7,8 +7,8 @@ turns the rows into a Scene. ``REFUSED`` is the one list of what cablefem does n
 what to do instead (docs/scene.md has the same table).
 """
 
-from ..errors import InputError
-from ..geometry.readers import is_number, parse_number
+from cablefem.errors import InputError
+from cablefem.geometry.readers import is_number, parse_number
 
 #: header keywords (upper case) -> section, tried in this order as MoorDyn does
 SECTION_KEYWORDS = (

@@ -24,12 +24,13 @@ import csv
 import ctypes
 import errno
 import io
+import json
 import os
 import signal
 import sys
 import threading
 
-from ..errors import OutputError, Terminated
+from cablefem.errors import OutputError, Terminated
 
 #: suffix of the temporary name a file is written under before it is renamed into place
 PARTIAL = ".partial"
@@ -281,3 +282,12 @@ def deferred_signals(reraise=True):
             signal.signal(sig, handler)
     if caught and reraise:
         raise KeyboardInterrupt if caught[0] == signal.SIGINT else Terminated(caught[0])
+
+
+def write_json(path, data):
+    """Write ``data`` as JSON to ``path`` atomically (a temporary file renamed into place), its
+    folder made if missing; OutputError if it cannot be written."""
+    from cablefem.io.output import prepare_file, write_atomic
+
+    prepare_file(path)
+    write_atomic(path, json.dumps(data, indent=1))

@@ -3,10 +3,10 @@ scene-level checks both share (``cablefem.io.checks``)."""
 
 import os
 
-from ..errors import InputError
-from .checks import check_scene
-from .moordyn_input import read_moordyn
-from .toml_scene import TOP_LEVEL_KEYS, parse_toml, read_toml_scene
+from cablefem.errors import InputError
+from cablefem.io.checks import check_scene
+from cablefem.io.moordyn_input import read_moordyn
+from cablefem.io.toml_scene import TOP_LEVEL_KEYS, parse_toml, read_toml_scene
 
 
 #: file extensions read as MoorDyn input files; anything else is tried as TOML first

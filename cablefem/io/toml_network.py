@@ -1,5 +1,5 @@
 """The network tables of a TOML scene: [points.NAME], [bodies.NAME] (with [bodies.NAME.motion]) and
-line ends that name a point (docs/scene.md, "Networks"; ``cablefem.network``)."""
+line ends that name a point (docs/scene.md, "Networks"; ``cablefem.model.network``)."""
 
 import math
 import re
@@ -7,11 +7,11 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..errors import InputError
-from ..geometry.readers import parse_number
-from ..network import Body, Point
-from ..scene import Motion
-from . import validate as v
+from cablefem.errors import InputError
+from cablefem.geometry.readers import parse_number
+from cablefem.model.network import Body, Point
+from cablefem.model.scene import Motion
+from cablefem.io import validate as v
 
 _COORDINATE = v.limited(v.vector3, "coordinate")
 _MASS = v.limited(v.non_negative, "point_mass")

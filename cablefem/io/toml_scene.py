@@ -2,7 +2,7 @@
 
 Every value is type- and range-checked here, so a bad scene fails with one
 line naming the key path (``lines[0].segments[1].length``) and the reason;
-defaults come from the dataclasses of ``cablefem.scene``. A ``[moordyn]``
+defaults come from the dataclasses of ``cablefem.model.scene``. A ``[moordyn]``
 table takes lines, points, line types and options from a MoorDyn v2 file;
 keys written in the TOML then override, one key at a time, what the MoorDyn
 file gave (``read_toml_scene`` states the rule). A grid, mesh or points seabed
@@ -22,16 +22,17 @@ except ModuleNotFoundError:  # Python 3.10
 
 import numpy as np
 
-from ..errors import InputError
-from ..geometry import Horizontal, Plane, choose_seabed
-from ..geometry.readers import MAX_COORDINATE, parse_number
-from ..line import Line, LineType, Segment
-from ..scene import INTEGRATORS, Contact, Environment, Friction, Motion, Output, Scene, Solver
-from . import validate as v
-from .currents import current_profile_setting
-from .moordyn_input import BODY_NO_MOTION_NOTE, NO_MOTION_NOTE, read_moordyn
-from .toml_network import body_motions, end, read_bodies, read_points
-from ..network import point_position, strings as network_strings
+from cablefem.errors import InputError
+from cablefem.geometry import Horizontal, Plane, choose_seabed
+from cablefem.geometry.readers import MAX_COORDINATE, parse_number
+from cablefem.model.line import Line, LineType, Segment
+from cablefem.dynamics.registry import INTEGRATORS
+from cablefem.model.scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
+from cablefem.io import validate as v
+from cablefem.io.currents import current_profile_setting
+from cablefem.io.moordyn_input import BODY_NO_MOTION_NOTE, NO_MOTION_NOTE, read_moordyn
+from cablefem.io.toml_network import body_motions, end, read_bodies, read_points
+from cablefem.model.network import point_position, strings as network_strings
 
 TOP_LEVEL_KEYS = ("name", "environment", "line_types", "lines", "seabed", "friction",
                   "motion", "solver", "output", "moordyn", "points", "bodies")
@@ -102,10 +103,10 @@ def read_toml_scene(path, data=None):
 
     Precedence with ``[moordyn] file``: a key written in the TOML wins; a key
     the TOML leaves out takes the MoorDyn file's value; a key neither gives
-    takes the default of ``cablefem.scene``. ``[line_types]`` and ``[[lines]]``
+    takes the default of ``cablefem.model.scene``. ``[line_types]`` and ``[[lines]]``
     may not be combined with ``[moordyn]`` (the lines come from the file).
     """
-    from ..loads import catalog  # here: a load module may read its keys' converters from cablefem.io
+    from cablefem.loads import catalog  # here: a load module may read its keys' converters from cablefem.io
 
     path = os.path.abspath(path)
     folder = os.path.dirname(path)

@@ -12,7 +12,7 @@ import unicodedata
 
 import numpy as np
 
-from ..errors import InputError
+from cablefem.errors import InputError
 
 #: a line may not need more than this strain to reach its fairlead from its anchor
 MAX_CHORD_STRAIN = 0.20
@@ -247,10 +247,10 @@ def read_seabed_file(path, kind, key, kind_key=None):
     """A seabed from ``cablefem.geometry.read_seabed`` (imported lazily), errors located at ``key``
     (``kind_key`` when no reader is installed yet)."""
     try:
-        from ..geometry import read_seabed
+        from cablefem.geometry import read_seabed
     except ImportError:
         try:  # the readers package, before cablefem.geometry re-exports it
-            from ..geometry.readers import read_seabed
+            from cablefem.geometry.readers import read_seabed
         except ImportError:
             raise InputError(f"seabed kind '{kind}' is not available yet", key=kind_key or key) from None
     try:

@@ -15,7 +15,7 @@ from xml.sax.saxutils import quoteattr
 import meshio
 import numpy as np
 
-from .output import GrowingFile, inside, replace_into, write_atomic
+from cablefem.io.output import GrowingFile, inside, replace_into, write_atomic
 
 __all__ = ["TimeSeriesWriter", "polyline_mesh", "read_collection", "write_atomic"]
 

@@ -97,17 +97,17 @@ class LoadSpec:
     """How a load presents itself to the compiled path.
 
     name: its key in every record (``p.<name>.<field>``); rule: "full" or "reduced" (the
-    quadrature its points use, ``cablefem.fem.LineFEM``) or "node" (a concentrated force at
+    quadrature its points use, ``cablefem.fem.discretisation.LineFEM``) or "node" (a concentrated force at
     vertices, parameters per vertex: ``cablefem.loads.points``); params: numpy dtype fields of its
     per-element (per-vertex) parameters (an ``active`` flag is added); kernel: the compiled point function
     ``kernel(ctx, p, old, new, state, hold, out, M, u)`` that adds the load at one point (see
-    ``cablefem.kernels``); state / hold / history: dtype fields per point (written each
+    ``cablefem.compiled.kernels``); state / hold / history: dtype fields per point (written each
     evaluation / read / read from ``old`` and written to ``new``, committed on accepted steps);
     hold_rule: compiled ``rule(base, state, hold, p, again) -> (held, changed)`` choosing the
     holds after a rejected Newton step, or None; scratch: (3 x 3 matrices, 3-vectors) the kernel
     uses; reference: the numpy face's class; frames: history fields written to VTK frames;
     build: ``build(setting) -> load or None``, the load a line of a scene gets
-    (``cablefem.system.Setting``; None: the scene does not need it); section and keys: the scene
+    (``cablefem.fem.system.Setting``; None: the scene does not need it); section and keys: the scene
     table the load reads (``[section]`` in TOML) and its keys with their converters
     (``cablefem.io.validate``), which ``setting.keys`` holds; required: the keys that table must have."""
 

@@ -1,7 +1,7 @@
 """Compiled arithmetic on 3-vectors and 3 x 3 blocks, for the loads' point kernels (numba).
 
 The point kernels run with numba's reference counting off (``_nrt=False``): they allocate
-nothing and work on scratch they are given (``cablefem.kernels``).
+nothing and work on scratch they are given (``cablefem.compiled.kernels``).
 """
 
 import numpy as np

@@ -14,8 +14,8 @@ added mass elsewhere) the load contributes nothing.
 import numpy as np
 from numba import njit
 
-from . import LoadSpec, Terms, identity_like, outer, unit_tangent
-from ._small import dot
+from cablefem.loads import LoadSpec, Terms, identity_like, outer, unit_tangent
+from cablefem.loads._small import dot
 
 
 class AddedMass:
@@ -62,7 +62,7 @@ class AddedMass:
 @njit(cache=True, _nrt=False)
 def added_mass_point(ctx, p, old, new, state, hold, out, M, u):
     """The compiled face: added mass, normal and tangential, at one full point (see
-    ``cablefem.kernels``; ``ctx.P``, the normal projector, is set when a tangent is)."""
+    ``cablefem.compiled.kernels``; ``ctx.P``, the normal projector, is set when a tangent is)."""
     m = p.added_mass
     normal, tangential = m.normal, m.tangential
     if not m.active or not (normal > 0.0 or tangential > 0.0):

@@ -5,9 +5,9 @@ Each load lives in one module with its two faces: the numpy reference (a class w
 ``evaluate(state, jacobian) -> Terms``, assembled through scikit-fem's forms) and the compiled
 point kernel (numba), and describes itself in a ``LoadSpec``: its name, the quadrature rule it is
 evaluated at, the parameters its kernel reads per element, the branch state it writes per point
-and the branch holds it reads (Newton's corrections, ``cablefem.policy``), its history per point
-(committed on accepted steps), and its scratch. The system (``cablefem.system``), the compiled
-evaluation (``cablefem.kernels``) and the compiled steps all build their load set, parameter
+and the branch holds it reads (Newton's corrections, ``cablefem.dynamics.policy``), its history per point
+(committed on accepted steps), and its scratch. The system (``cablefem.fem.system``), the compiled
+evaluation (``cablefem.compiled.kernels``) and the compiled steps all build their load set, parameter
 records, per-point records and scratch from this list by name: a kernel reads ``p.drag.normal``
 from the element's record, never a column number.
 
@@ -25,7 +25,7 @@ RULES = ("full", "reduced", "node")
 
 
 def _default():
-    from . import added_mass, contact, drag, gravity, points, soil, tension
+    from cablefem.loads import added_mass, contact, drag, gravity, points, soil, tension
 
     return [tension.SPEC, gravity.SPEC, contact.SPEC, soil.SPEC, drag.SPEC, added_mass.SPEC, points.SPEC]
 
@@ -36,7 +36,7 @@ _frozen = []  # the Layout once the compiled kernels were built from it
 
 def register(spec):
     """Add a load to the catalog. Only before the compiled kernels are built (the first import of
-    ``cablefem.kernels``): they are compiled for one catalog, and numba caches them on disk."""
+    ``cablefem.compiled.kernels``): they are compiled for one catalog, and numba caches them on disk."""
     if _frozen:
         raise RuntimeError(f"cannot register load '{spec.name}': the compiled kernels were built from "
                            "the catalog already; register loads before anything compiles "

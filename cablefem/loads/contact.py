@@ -34,8 +34,8 @@ sliding counts as transverse.
 import numpy as np
 from numba import njit
 
-from . import LoadSpec, Terms, add, compose, identity_like, outer, unit_tangent
-from ._small import add_matmul, add_outer, dot, unit_divisor
+from cablefem.loads import LoadSpec, Terms, add, compose, identity_like, outer, unit_tangent
+from cablefem.loads._small import add_matmul, add_outer, dot, unit_divisor
 
 #: |(I - d_P d_P) t| below which the in-plane axial direction q is taken as 0
 DEGENERATE_AXIS = 1e-12
@@ -120,7 +120,7 @@ class SeabedContact:
 
     def params(self):
         """The compiled face's parameters per element (``SPEC.params``), each (nel,)."""
-        from .friction import AnisotropicFriction, IsotropicFriction
+        from cablefem.loads.friction import AnisotropicFriction, IsotropicFriction
 
         law, nel = self.friction, self.stiffness.shape[0]
         model = ISOTROPIC if isinstance(law, IsotropicFriction) else (
@@ -159,7 +159,7 @@ def _axis(dr, n):
 
 # ---------------------------------------------------------------------------- the compiled face
 #: branches a point's contact may be held on (``hold.contact.bits``, Newton's corrections,
-#: ``cablefem.policy``): friction on its ramp (sticking), the seabed spring acting or not (on:
+#: ``cablefem.dynamics.policy``): friction on its ramp (sticking), the seabed spring acting or not (on:
 #: -k d_G also above the seabed), its damper acting or not
 STICK, DAMPER_ON, DAMPER_OFF, TOUCH_ON, TOUCH_OFF = 1, 2, 4, 8, 16
 DAMPERS, TOUCHES = DAMPER_ON | DAMPER_OFF, TOUCH_ON | TOUCH_OFF
@@ -188,7 +188,7 @@ def contact_point(ctx, p, old, new, state, hold, out, M, u):
     (Eq. 12; housner2022 Eq. 5-13) at one full point, on the branches ``hold.contact.bits`` holds
     when ``ctx.held``; ``state.contact``: the contact bits and the slip velocity w (zero off the
     seabed or without friction). A curved seabed's normal gradient ``ctx.dn`` enters only where
-    ``ctx.curved`` (a plane's is zero). See ``cablefem.kernels`` for the arguments."""
+    ``ctx.curved`` (a plane's is zero). See ``cablefem.compiled.kernels`` for the arguments."""
     c_ = p.contact
     if not c_.active:
         return
@@ -348,7 +348,7 @@ def _anisotropic(ctx, c_, pressure, vn, stick, eye, In, M, u, out):
 
 @njit(cache=True, _nrt=False)
 def contact_hold(base, state, hold, p, again):
-    """Hold the branches a rejected Newton step's trial reached at this point (``cablefem.policy``):
+    """Hold the branches a rejected Newton step's trial reached at this point (``cablefem.dynamics.policy``):
     friction on its ramp where the point slid at the base (|w| >= v_c) and the trial took it, still
     on the seabed, into the ramp or against its slip; the spring and damper as the trial has them
     where it put the point on the seabed or lifted it off (a resting point's damper alone switches
@@ -374,7 +374,7 @@ def contact_hold(base, state, hold, p, again):
 def build(setting):
     """Every line rests on the seabed: the scene's contact, with friction in dynamics; a line of a
     scene with ``[soil]`` has none (below the surface the soil holds it, ``cablefem.loads.soil``)."""
-    from .friction import friction_law
+    from cablefem.loads.friction import friction_law
 
     if "soil" in setting.sections:
         return None

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from ..errors import InputError
+from cablefem.errors import InputError
 
 #: heights a profile may keep in the compiled parameters (each element's record holds them)
 MAX_HEIGHTS = 32

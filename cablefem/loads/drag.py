@@ -35,10 +35,10 @@ still water surface (a fairlead at z = 0 has a vanishing length in air).
 import numpy as np
 from numba import njit
 
-from ..errors import InputError
-from . import LoadSpec, Terms, compose, identity_like, outer, unit_tangent
-from ._small import dot
-from .current import PROFILE_FIELDS, current_at, no_profile
+from cablefem.errors import InputError
+from cablefem.loads import LoadSpec, Terms, compose, identity_like, outer, unit_tangent
+from cablefem.loads._small import dot
+from cablefem.loads.current import PROFILE_FIELDS, current_at, no_profile
 
 
 def tangential_drag_from_moordyn(cd_axial):
@@ -118,7 +118,7 @@ class Drag:
 @njit(cache=True, _nrt=False)
 def drag_point(ctx, p, old, new, state, hold, out, M, u):
     """The compiled face: Morison drag on the velocity relative to the current at one full point
-    (see ``cablefem.kernels``; ``ctx.P``, the normal projector, is set when a tangent is)."""
+    (see ``cablefem.compiled.kernels``; ``ctx.P``, the normal projector, is set when a tangent is)."""
     d = p.drag
     normal, tangential = d.normal, d.tangential
     if not d.active or not (normal > 0.0 or tangential > 0.0):

@@ -35,8 +35,8 @@ from typing import ClassVar
 
 import numpy as np
 
-from ..errors import InputError
-from . import compose, identity_like, outer
+from cablefem.errors import InputError
+from cablefem.loads import compose, identity_like, outer
 
 
 def saturation(w, v_threshold, static_scale=1.0):
@@ -132,7 +132,7 @@ class AnisotropicFriction:
 
 
 def friction_law(friction):
-    """The law of a ``cablefem.scene.Friction``: IsotropicFriction, AnisotropicFriction or None."""
+    """The law of a ``cablefem.model.scene.Friction``: IsotropicFriction, AnisotropicFriction or None."""
     if friction.model == "none":
         return None
     if friction.model == "isotropic":

@@ -23,7 +23,7 @@ import math
 import numpy as np
 from numba import njit
 
-from . import LoadSpec, Terms
+from cablefem.loads import LoadSpec, Terms
 
 
 def submerged_fraction(z, diameter):
@@ -95,7 +95,7 @@ def submerged_point(z, diameter):
 
 @njit(cache=True, _nrt=False)
 def weight_point(ctx, p, old, new, state, hold, out, M, u):
-    """The compiled face: weight and buoyancy at one point (see ``cablefem.kernels``)."""
+    """The compiled face: weight and buoyancy at one point (see ``cablefem.compiled.kernels``)."""
     w = p.weight
     if not w.active:
         return

@@ -1,6 +1,6 @@
 """Point bodies on a line: clump weights, buoys and connectors at its vertices (MoorDyn's points).
 
-A ``Joint`` (``cablefem.line``) of mass m, volume V, drag area CdA and added-mass coefficient Ca
+A ``Joint`` (``cablefem.model.line``) of mass m, volume V, drag area CdA and added-mass coefficient Ca
 sits at one vertex x of the line. It adds the concentrated force
 
     F = (-m g + rho g V phi(z)) e_z + 1/2 rho CdA |u| u - (m + Ca rho V) a,   u = U - v,
@@ -15,7 +15,7 @@ line's elements on both sides carry it there.
 
 In the weak form a concentrated force is a Dirac load, so this is the catalog's one "node" load:
 it is evaluated at the vertices, not at quadrature points, and its rows go straight into the
-residual at the vertex (``LineSystem.evaluate``, ``cablefem.kernels.assemble_nodes``). Points at a
+residual at the vertex (``LineSystem.evaluate``, ``cablefem.compiled.kernels.assemble_nodes``). Points at a
 prescribed end are not loaded: the end's motion is given, and the force reported there is the
 line's.
 """
@@ -25,8 +25,8 @@ import math
 import numpy as np
 from numba import njit
 
-from . import LoadSpec, Terms
-from .current import PROFILE_FIELDS, current_at, no_profile
+from cablefem.loads import LoadSpec, Terms
+from cablefem.loads.current import PROFILE_FIELDS, current_at, no_profile
 
 
 def sphere_fraction(z, radius):

@@ -43,9 +43,9 @@ above the surface neither acts (the contact's spring only pushes once the centre
 import numpy as np
 from numba import njit
 
-from ..errors import InputError
-from ..io import validate as v
-from . import LoadSpec, Terms, identity_like, outer, unit_tangent
+from cablefem.errors import InputError
+from cablefem.io import validate as v
+from cablefem.loads import LoadSpec, Terms, identity_like, outer, unit_tangent
 
 #: a spring whose offset is within this fraction beyond its yield offset counts as on the yield surface,
 #: where the force is the yield force and the tangent the elastic one: a point that stays on the
@@ -53,7 +53,7 @@ from . import LoadSpec, Terms, identity_like, outer, unit_tangent
 #: friction) is there to round-off, and round-off would otherwise pick its tangent, elastic or
 #: plastic, at random from one Newton iteration to the next
 ON_YIELD = 1e-9
-#: the installation starts of the pretension path (``cablefem.pretension``)
+#: the installation starts of the pretension path (``cablefem.statics.pretension``)
 INSTALLATIONS = ("laid", "catenary")
 #: defaults of the [soil] keys (rui2025 Sec. 2.3, Table 1; N_c: docs/scene.md, "[soil]")
 DEFAULTS = {"su_mudline": 0.0, "bearing_factor": 7.6, "width_normal": 2.5, "width_tangential": 8.0,
@@ -185,7 +185,7 @@ def _strength(depth, su0, su1, ramp):
 @njit(cache=True, _nrt=False)
 def soil_point(ctx, p, old, new, state, hold, out, M, u):
     """The compiled face: the macro-element's reaction at one full point and its consistent tangent
-    (A = -f_r, B = -f_dr), the trial history to ``new.soil``. See ``cablefem.kernels``."""
+    (A = -f_r, B = -f_dr), the trial history to ``new.soil``. See ``cablefem.compiled.kernels``."""
     q = p.soil
     if not q.active:
         return

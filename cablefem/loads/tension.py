@@ -10,7 +10,7 @@ would make the Newton matrix singular (a line in a vertical plane has no
 out-of-plane stiffness without tension): its tangent gets a tiny isotropic
 stiffness ``SLACK_STIFFNESS`` EA instead, which changes the Newton path, not
 the equilibrium. ``compression=True`` lets the line push (T = EA e for all
-e); statics starts with it, see ``cablefem.statics``.
+e); statics starts with it, see ``cablefem.statics.newton``.
 
 Two damping laws, per line type (``damping_when_slack``): by default the one
 above, where a slack element carries nothing (a chain's links go loose: no
@@ -26,8 +26,8 @@ files are read with it, so that both codes run the same physics.
 import numpy as np
 from numba import njit
 
-from . import LoadSpec, Terms, identity_like, outer, unit_tangent
-from ._small import unit_divisor
+from cablefem.loads import LoadSpec, Terms, identity_like, outer, unit_tangent
+from cablefem.loads._small import unit_divisor
 
 #: tangent stiffness of a slack element, as a fraction of EA
 SLACK_STIFFNESS = 1e-6
@@ -53,7 +53,7 @@ class Tension:
     """Axial stiffness EA [N] and damping beta [s] per element, arrays of shape (nel,).
 
     Evaluated at the reduced quadrature (p Gauss points for order p), which removes the
-    membrane locking of curved elements of a stiff line (``cablefem.fem.LineFEM``).
+    membrane locking of curved elements of a stiff line (``cablefem.fem.discretisation.LineFEM``).
     """
 
     name = "tension"
@@ -116,7 +116,7 @@ class Tension:
 def tension_point(ctx, p, old, new, state, hold, out, M, u):
     """The compiled face: the flux N = T t at one reduced point and D = N_dr + v_x N_dv, with the
     line pulling and pushing where Newton's taut correction holds it (``hold.tension.pull``);
-    ``state.tension.taut``: whether the point is taut (see ``cablefem.kernels``)."""
+    ``state.tension.taut``: whether the point is taut (see ``cablefem.compiled.kernels``)."""
     q = p.tension
     if not q.active:
         return
@@ -157,7 +157,7 @@ def tension_point(ctx, p, old, new, state, hold, out, M, u):
 @njit(cache=True, _nrt=False)
 def tension_hold(base, state, hold, p, again):
     """Hold the taut branch where the trial pulled a point slack at the base taut (and, ``again``,
-    where it is held already): Newton's taut correction (``cablefem.policy``)."""
+    where it is held already): Newton's taut correction (``cablefem.dynamics.policy``)."""
     flag = (state.tension.taut and not base.tension.taut) or (again and hold.tension.pull)
     changed = flag != hold.tension.pull
     hold.tension.pull = flag

@@ -10,7 +10,7 @@ own folder and comes back as one row of a table written as Parquet and CSV
 import json
 import os
 
-from .spec import build_sweep, read_sweep
+from cablefem.sweeps.spec import build_sweep, read_sweep
 
 __all__ = ["read_sweep", "build_sweep", "run", "run_sweep_file", "sweep"]
 
@@ -21,9 +21,9 @@ def run(spec, out=None, client=None, scheduler=None, workers=None, progress=None
     returns the table (pandas.DataFrame, one row per case; ``table.attrs["sweep"]``: how many
     cases ran, were skipped as done, failed or were lost, the wall time [s] and each worker's
     kernel load time [s]), also written to out/sweep.parquet, out/sweep.csv and out/sweep.json."""
-    from ..io.vtk import write_atomic
-    from .engine import execute
-    from .table import make_table, write_table
+    from cablefem.io.vtk import write_atomic
+    from cablefem.sweeps.engine import execute
+    from cablefem.sweeps.table import make_table, write_table
 
     out = os.path.abspath(out or spec.out)
     os.makedirs(out, exist_ok=True)

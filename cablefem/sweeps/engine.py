@@ -14,9 +14,9 @@ import os
 import sys
 import time
 
-from ..errors import InputError
-from .paths import get_path
-from .tasks import read_marker, run_task, task_of, warm
+from cablefem.errors import InputError
+from cablefem.sweeps.paths import get_path
+from cablefem.sweeps.tasks import read_marker, run_task, task_of, warm
 
 #: tasks in flight per worker thread: enough to keep every thread busy between results
 IN_FLIGHT_PER_THREAD = 2

@@ -12,7 +12,7 @@ import copy
 import os
 import re
 
-from ..errors import InputError
+from cablefem.errors import InputError
 
 _PART = re.compile(r"([A-Za-z_][A-Za-z0-9_\-]*)((?:\[(?:\d+|\*)\])*)$")
 _INDEX = re.compile(r"\[(\d+|\*)\]")

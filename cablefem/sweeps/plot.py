@@ -3,8 +3,8 @@ value of another (matplotlib, imported here only)."""
 
 import os
 
-from ..errors import InputError
-from .table import HEAD, read_table
+from cablefem.errors import InputError
+from cablefem.sweeps.table import HEAD, read_table
 
 
 def parameter_columns(table):

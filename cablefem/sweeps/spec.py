@@ -21,9 +21,9 @@ import json
 import os
 from dataclasses import dataclass, field
 
-from ..errors import InputError
-from ..io import validate as v
-from .paths import absolute_value, get_path, is_file_path, parse_path, set_path
+from cablefem.errors import InputError
+from cablefem.io import validate as v
+from cablefem.sweeps.paths import absolute_value, get_path, is_file_path, parse_path, set_path
 
 SWEEP_KEYS = ("base", "kind", "combine", "out", "stats_from", "set", "axes", "zip", "cases", "blocks",
               "fatigue")
@@ -69,7 +69,7 @@ class Sweep:
 
 def read_sweep(path):
     """The Sweep of the sweep file at ``path``: every case expanded and validated."""
-    from ..io.toml_scene import parse_toml
+    from cablefem.io.toml_scene import parse_toml
 
     path = os.path.abspath(path)
     try:
@@ -239,7 +239,7 @@ def _zipped(table, where, folder):
 
 def _base_data(base):
     """The base scene as TOML data: a TOML file parsed, a MoorDyn file wrapped as ``[moordyn] file``."""
-    from ..io.toml_scene import TOP_LEVEL_KEYS, parse_toml
+    from cablefem.io.toml_scene import TOP_LEVEL_KEYS, parse_toml
 
     extension = os.path.splitext(base)[1].lower()
     if extension in MOORDYN_EXTENSIONS:
@@ -258,7 +258,7 @@ def _base_data(base):
 def _case(index, base, base_data, kind, assignments, values, source, fatigue=None):
     """The validated Case number ``index``: the base data with the assignments and the axis values
     set, read by the TOML scene reader (an InputError names the sweep file, the case and the key)."""
-    from ..io.toml_scene import read_toml_scene
+    from cablefem.io.toml_scene import read_toml_scene
 
     data = copy.deepcopy(base_data)
     run = {"kind": kind, "alone": False}

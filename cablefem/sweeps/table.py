@@ -65,7 +65,7 @@ def read_table(path):
     """A sweep's table from its folder (``sweep.parquet`` in it) or a .parquet / .csv file."""
     import pandas as pd
 
-    from ..errors import InputError
+    from cablefem.errors import InputError
 
     if os.path.isdir(path):
         path = os.path.join(path, "sweep.parquet")

@@ -17,10 +17,10 @@ import shutil
 import tempfile
 import time
 
-from ..errors import ConvergenceError, InputError
-from ..io.vtk import write_atomic
-from .paths import set_path
-from .stats import fatigue_area, fatigue_damage, tension_statistics
+from cablefem.errors import ConvergenceError, InputError
+from cablefem.io.vtk import write_atomic
+from cablefem.sweeps.paths import set_path
+from cablefem.sweeps.stats import fatigue_area, fatigue_damage, tension_statistics
 
 MARKER = "row.json"
 STATISTICS = ("max", "max_t", "min", "min_t", "mean", "std")
@@ -42,7 +42,7 @@ def run_task(task):
     """Run one case (``task_of``) and return its row: status "ok" or "failed" with the error on
     one line, the task's wall time and its worker process's CPU time [s], the bytes it wrote, and
     the kind's columns; the row is also written to the case folder's ``row.json``."""
-    from ..io.toml_scene import read_toml_scene
+    from cablefem.io.toml_scene import read_toml_scene
 
     start, cpu = time.perf_counter(), time.process_time()
     folder = task["dir"]
@@ -86,7 +86,8 @@ def folder_bytes(folder):
 def static_columns(scene, folder):
     """Static equilibrium: ``static.json`` as ``cablefem static --json`` writes it, and per line the
     fairlead and anchor tension [N] and touchdown arc length [m] (NaN without contact)."""
-    from ..cli import solve_scene_static, write_json
+    from cablefem.statics.scene import solve_scene_static
+    from cablefem.io.output import write_json
 
     begin = time.perf_counter()
     reports, iterations, results = solve_scene_static(scene)
@@ -103,8 +104,8 @@ def static_columns(scene, folder):
 
 
 def dynamic_columns(scene, folder, task):
-    """A time-domain run (``cablefem.run.run_scene``, no progress bar) and its statistics."""
-    from ..run import run_scene
+    """A time-domain run (``cablefem.runs.run.run_scene``, no progress bar) and its statistics."""
+    from cablefem.runs.run import run_scene
 
     summary = run_scene(scene, folder, progress=False)
     columns = {"run_wall_time_s": summary["wall_time_s"], "simulated_time_s": summary["simulated_time_s"],
@@ -116,7 +117,7 @@ def dynamic_columns(scene, folder, task):
 def series_columns(scene, folder, stats_from, fatigue):
     """From a run's tensions.csv, per line and end (fairlead, anchor): the tension statistics over
     t >= stats_from [s] (``cablefem.sweeps.stats``), and with ``fatigue`` the fairlead's damage."""
-    from ..post import read_tensions
+    from cablefem.post import read_tensions
 
     series = read_tensions(folder)
     columns = {}
@@ -157,7 +158,7 @@ def read_marker(task):
         return None
     row = marker["row"]
     if marker.get("post") != task["post"] and task["kind"] == "dynamic" and row["status"] == "ok":
-        from ..io.toml_scene import read_toml_scene
+        from cablefem.io.toml_scene import read_toml_scene
 
         scene = read_toml_scene(task["base"], task["data"])
         row = {key: value for key, value in row.items() if ":" not in key}  # the per-line columns go
@@ -170,9 +171,9 @@ def warm(tasks):
     """Load (or, the first time on this machine, compile) the compiled kernels the ``tasks`` need
     by solving each one's scene, on two elements per segment, statically and for two time steps,
     in a scratch folder; returns the seconds it took."""
-    from ..cli import solve_scene_static
-    from ..io.toml_scene import read_toml_scene
-    from ..run import run_scene
+    from cablefem.statics.scene import solve_scene_static
+    from cablefem.io.toml_scene import read_toml_scene
+    from cablefem.runs.run import run_scene
 
     start = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="cablefem-warm-") as scratch:

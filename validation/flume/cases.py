@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from cablefem.post import read_tensions
-from cablefem.scenes import FLUME_MOTIONS, FLUME_SEABEDS
+from cablefem.model.builtin import FLUME_MOTIONS, FLUME_SEABEDS
 
 HERE = Path(__file__).resolve().parent
 MOTIONS = tuple(FLUME_MOTIONS)  # ("quasi-static", "dynamic")
@@ -64,10 +64,10 @@ def _motion_state(m, t):
 def static_tension(scene, surge):
     """Static fairlead tension [N] of the scene's line with its fairlead moved by ``surge`` [m]
     along x (no friction, drag or inertia): the quasi-static limit of a case."""
-    from cablefem.line import Line
-    from cablefem.results import report as line_report
-    from cablefem.run import build_system
-    from cablefem.statics import solve_static
+    from cablefem.model.line import Line
+    from cablefem.runs.results import report as line_report
+    from cablefem.fem.system import build_system
+    from cablefem.statics.solve import solve_static
 
     line = scene.lines[0]
     moved = Line(line.name, line.anchor, line.fairlead + np.array([surge, 0.0, 0.0]), line.segments, line.order)

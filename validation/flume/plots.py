@@ -3,7 +3,7 @@ frame per seabed."""
 
 import numpy as np
 
-from cablefem.scenes import FLUME_MOTIONS, FLUME_SEABEDS
+from cablefem.model.builtin import FLUME_MOTIONS, FLUME_SEABEDS
 
 from validation.flume.cases import MN, MOTIONS, PAPER_LOWEST_PEAK, _motion_state
 from validation.flume.report import _motion_words, _settings_words
@@ -182,6 +182,6 @@ def render_frames(results, out, vertical_scale=3.0):
 
 
 def _surge(motion, t):
-    from cablefem.motion import fairlead_motion
+    from cablefem.model.motion import fairlead_motion
 
     return float(fairlead_motion(FLUME_MOTIONS[motion], t)[0][0])

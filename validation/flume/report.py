@@ -1,7 +1,7 @@
 """The tables of validation/flume's results (the cases, the convergence and sensitivity studies), as
 text."""
 
-from cablefem.scenes import FLUME_MOTIONS, FLUME_SEABEDS
+from cablefem.model.builtin import FLUME_MOTIONS, FLUME_SEABEDS
 
 from validation.flume.cases import MN, MOTIONS, PAPER_LOWEST_PEAK
 

@@ -5,9 +5,9 @@ Run ``python -m validation.flume.run [--fast] [--out DIR] [--runs DIR] [--conver
 ``run(fast=True)`` returns the numbers tests/test_validation_flume.py asserts on.
 
 The cases are the sweep files of this folder (``sweep.toml``, ``sweep_fast.toml``; docs/sweep.md):
-the Table 5 line of ``flume.toml`` (the physics of ``cablefem.scenes.flume_scene``: prototype
+the Table 5 line of ``flume.toml`` (the physics of ``cablefem.model.builtin.flume_scene``: prototype
 scale, reconstructed steps, docs/seabeds.md) with each case's seabed, motion, elements and step,
-run in parallel on Dask by ``cablefem.sweeps`` (``cablefem.run.run_scene`` in each worker) for the
+run in parallel on Dask by ``cablefem.sweeps`` (``cablefem.runs.run.run_scene`` in each worker) for the
 ramp (one period) plus several periods, each into its own folder; the statistics are taken
 over the last two periods: mean, max and min fairlead tension, the quasi-static "lowest tension
 peak" (the minimum of the periodic tension, Figs. 12, 14, 16), the dynamic peak and range

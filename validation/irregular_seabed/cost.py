@@ -37,7 +37,7 @@ def projection_call_cost(seabed, points, repeats=200):
 
 
 #: Table 6's two ways of running: "run_scene" is what ``cablefem run`` does (the compiled
-#: kernel of ``cablefem.fused`` when the loads allow it, frames and tensions.csv written);
+#: kernel of ``cablefem.compiled.evaluator`` when the loads allow it, frames and tensions.csv written);
 #: "numpy" is the reference numpy assembly (``compiled=False``), the time loop alone
 COST_PATHS = ("run_scene", "numpy")
 
@@ -86,8 +86,8 @@ def timed_run(path, seabed, name, settings, duration, runs_dir):
 def cost_study(settings, runs_dir):
     """Table 6: the two horizontal-seabed models, on each path, run alternately ``repeats``
     times; wall times, ratios, and the largest relative difference of the fairlead tensions."""
-    from cablefem.results import report
-    from cablefem.statics import solve_line
+    from cablefem.runs.results import report
+    from cablefem.statics.touchdown import solve_line
 
     duration, repeats = settings["cost_duration"], settings["repeats"]
     tree = study.provenance()

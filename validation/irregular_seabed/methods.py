@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from cablefem.geometry import TriangulatedSurface
-from cablefem.line import Line
+from cablefem.model.line import Line
 from cablefem.post import read_tensions
 
 from validation.irregular_seabed.model import (CENTRE, CONTACT, ENVIRONMENT, LENGTH, METHODS, MOTION, PERIOD,
@@ -90,8 +90,8 @@ def findings(by_method):
 def static_tension(seabed, elements, fairlead_x):
     """(fairlead tension [N], touchdown x [m]) of the line in static equilibrium with its
     fairlead at (fairlead_x, 0, 0) [m], solved as ``cablefem static`` does (``solve_line``)."""
-    from cablefem.results import report
-    from cablefem.statics import solve_line
+    from cablefem.runs.results import report
+    from cablefem.statics.touchdown import solve_line
 
     line = line_on(seabed, elements)
     line = Line(line.name, line.anchor, (fairlead_x, 0.0, 0.0), line.segments, line.order)

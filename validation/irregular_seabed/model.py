@@ -9,9 +9,9 @@ import numpy as np
 
 from cablefem.geometry import TriangulatedSurface
 from cablefem.geometry.generators import diamond_square
-from cablefem.line import Line, Segment
-from cablefem.scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
-from cablefem.scenes import table5_chain
+from cablefem.model.line import Line, Segment
+from cablefem.model.scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
+from cablefem.model.builtin import table5_chain
 
 METHODS = ("general", "inclined", "horizontal")
 LENGTH = 635.0  # m, Table 5
@@ -108,7 +108,7 @@ def scene_on(seabed, name, elements, dt, duration, every):
 
 def run_scene_quiet(scene, out_dir):
     """``run_scene`` without a progress bar; (summary, error message or None)."""
-    from cablefem.run import run_scene
+    from cablefem.runs.run import run_scene
 
     try:
         return run_scene(scene, str(out_dir), progress=False), None

@@ -7,11 +7,14 @@ from pathlib import Path
 
 import numpy as np
 
-from cablefem.dynamics import INTEGRATORS
-from cablefem.motion import fairlead_motion
-from cablefem.network import dynamic_lines
-from cablefem.run import anchor_path, boundary_path, build_system, junction_steps, start_states
-from cablefem.schemes import integrator_options
+from cablefem.dynamics.registry import INTEGRATORS
+from cablefem.model.motion import fairlead_motion
+from cablefem.model.network import dynamic_lines
+from cablefem.model.network import anchor_path, boundary_path
+from cablefem.fem.system import build_system
+from cablefem.runs.run import junction_steps
+from cablefem.statics.scene import start_states
+from cablefem.dynamics.schemes import integrator_options
 
 from validation.junction.inputs import (CASES, CLUMP, FILE_ELEMENTS, IC_DTM, ORDER, case_duration, moordyn_text,
                                         scene_of, toml_text)

@@ -1,5 +1,5 @@
 """cablefem against MoorDyn-C on a crowfoot: one line from a coupled fairlead down to a free junction
-carrying a clump, two legs from the junction to anchors (issue 18, ``cablefem.coupled_steps``).
+carrying a clump, two legs from the junction to anchors (issue 18, ``cablefem.dynamics.junctions``).
 
 Run ``python -m validation.junction.run [--fast] [--out DIR]``; ``run(fast=True)`` returns the
 numbers tests/test_validation_junction.py asserts on. The README has the case, the alignment of
@@ -10,7 +10,7 @@ the physics and the latest numbers.
    ``validation.moordyn.peer``) and ``inputs/crowfoot.toml`` (cablefem: a coupled [points] entry
    following [motion]), both written by ``write_inputs`` from the constants of ``inputs.py``.
 2. Statics: the junction's position and the tensions against MoorPy's ``System`` (cablefem's
-   network statics, ``cablefem.coupling``, and MoorDyn's initial condition).
+   network statics, ``cablefem.statics.network``, and MoorDyn's initial condition).
 3. Dynamics: each code refined (MoorDyn's segments and dtM; cablefem's elements and dt) until it
    is converged; the fairlead tension, both anchor tensions and the junction's position of the
    finest runs compared; time per simulated second of each code.

@@ -1,13 +1,13 @@
-"""The crowfoot's statics: cablefem's network statics (``cablefem.coupling``) against MoorPy's
+"""The crowfoot's statics: cablefem's network statics (``cablefem.statics.network``) against MoorPy's
 ``System``."""
 
 import time
 
 import numpy as np
 
-from cablefem.coupling import solve_network
-from cablefem.results import end_forces
-from cablefem.run import build_system
+from cablefem.statics.network import solve_network
+from cablefem.runs.results import end_forces
+from cablefem.fem.system import build_system
 
 from validation.junction.inputs import (ANCHORS, CHAIN, CLUMP, DEPTH, FAIRLEAD, GRAVITY, JUNCTION, LENGTHS,
                                         WATER_DENSITY)
@@ -36,7 +36,7 @@ def moorpy_statics():
 
 
 def cablefem_statics(scene):
-    """cablefem's network statics (``cablefem.coupling``): junction position (3,) and tensions
+    """cablefem's network statics (``cablefem.statics.network``): junction position (3,) and tensions
     {line: (anchor end, fairlead end)} [N] (the lines' ends as MoorPy's A, B)."""
     result = solve_network(scene, lambda line: build_system(scene, line, dynamic=False),
                            tolerance=1e-10, max_iterations=100)

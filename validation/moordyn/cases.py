@@ -11,8 +11,8 @@ import numpy as np
 
 from cablefem.errors import ConvergenceError
 from cablefem.io import load_scene
-from cablefem.line import Line, Segment
-from cablefem.scenes import FLUME_ANCHOR, FLUME_DEPTH, table5_chain
+from cablefem.model.line import Line, Segment
+from cablefem.model.builtin import FLUME_ANCHOR, FLUME_DEPTH, table5_chain
 
 from validation.moordyn.comparison import compare_runs, periodicity, self_differences
 from validation.moordyn.inputs import (FLUME_FILE_SEGMENTS, FLUME_LENGTH, GRAVITY, HOUSNER_CHAIN_LENGTH, WATER_DENSITY,
@@ -107,7 +107,7 @@ def run_switches(case, fast, reference, series):
         chain = line_type_120mm_chain()
         weight = (chain["MassDen"] - WATER_DENSITY * np.pi / 4 * chain["Diam"] ** 2) * GRAVITY
         fric_damp = weight * HOUSNER_CHAIN_LENGTH / 20 / 0.01  # a resting chain node saturates at 0.01 m/s
-        from cablefem.scene import Friction
+        from cablefem.model.scene import Friction
         friction = Friction(model="isotropic", mu=mu, v_threshold=0.01, saturation_damping=fric_damp)
         md_friction = {"FrictionCoefficient": mu, "FricDamp": fric_damp / s["segments"]}
         # both codes start from the frictionless equilibrium (cablefem's statics have no friction;
@@ -213,7 +213,7 @@ def static_checks(inputs_folder, fast, log=print):
     fairlead (z = 0 against z = -1 m) and a stiff seabed."""
     from moorpy.Catenary import catenary
 
-    from cablefem.scene import Contact
+    from cablefem.model.scene import Contact
 
     chain = table5_chain()
     weight = chain.submerged_weight(WATER_DENSITY, GRAVITY)

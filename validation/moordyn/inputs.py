@@ -8,7 +8,7 @@ import numpy as np
 
 from cablefem.geometry.generators import slope
 from cablefem.geometry.readers import moordyn_c
-from cablefem.scenes import FLUME_ANCHOR, FLUME_DEPTH, FLUME_MOTIONS, table5_chain
+from cablefem.model.builtin import FLUME_ANCHOR, FLUME_DEPTH, FLUME_MOTIONS, table5_chain
 
 MN = 1e6
 WATER_DENSITY, GRAVITY = 1025.0, 9.81

@@ -7,14 +7,16 @@ from pathlib import Path
 
 import numpy as np
 
-from cablefem.dynamics import INTEGRATORS
+from cablefem.dynamics.registry import INTEGRATORS
 from cablefem.errors import ConvergenceError
-from cablefem.line import Line, Segment
+from cablefem.model.line import Line, Segment
 from cablefem.loads.added_mass import AddedMass
 from cablefem.loads.drag import Drag
-from cablefem.motion import fairlead_motion
-from cablefem.run import boundary_path, build_system, start_states
-from cablefem.statics import solve_static
+from cablefem.model.motion import fairlead_motion
+from cablefem.model.network import boundary_path
+from cablefem.fem.system import build_system
+from cablefem.statics.scene import start_states
+from cablefem.statics.solve import solve_static
 
 from validation.moordyn import peer
 from validation.moordyn.switches import PerUnstretchedLength, VerticalSeabed
@@ -116,7 +118,7 @@ def run_cablefem_case(scene, duration, dt, hydro_per_unstretched=False, lumped=F
 
 
 def static_start(scene):
-    """Static equilibrium of every line at t = 0 (``cablefem.run.start_states``) and how it was
+    """Static equilibrium of every line at t = 0 (``cablefem.statics.scene.start_states``) and how it was
     reached. With MoorDyn's vertical contact, a line whose Newton fails from the catenary guess
     (the slack line 2 on the side slope, at 12.5 m elements) is solved again from its equilibrium
     with cablefem's own contact: a continuation, same equations (README, "Problems found")."""

@@ -1,6 +1,6 @@
 """cablefem and MoorDyn-C with aligned physics on the frictionless flume chain (issue 16, part 2).
 
-The flat flume chain of desire2023 Table 5 (``cablefem.scenes.flume_scene("flat")``; MoorDyn reads
+The flat flume chain of desire2023 Table 5 (``cablefem.model.builtin.flume_scene("flat")``; MoorDyn reads
 the same line from ``validation/moordyn/inputs/flume_flat.dat``) without seabed friction, under
 the paper's two fairlead motions (Sec. 4.1), each ramped in over its first period:
 
@@ -40,7 +40,7 @@ import numpy as np
 if __package__ in (None, ""):  # python validation/moordyn_aligned/run.py
     sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from cablefem.scenes import FLUME_MOTIONS, flume_scene, table5_chain  # noqa: E402
+from cablefem.model.builtin import FLUME_MOTIONS, flume_scene, table5_chain  # noqa: E402
 from cablefem.study import write_json  # noqa: E402
 from validation.moordyn.comparison import differences  # noqa: E402
 from validation.moordyn.inputs import FLUME_FILE_SEGMENTS  # noqa: E402

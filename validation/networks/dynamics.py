@@ -23,12 +23,14 @@ from pathlib import Path
 
 import numpy as np
 
-from cablefem.dynamics import INTEGRATORS
+from cablefem.dynamics.registry import INTEGRATORS
 from cablefem.io import load_scene
-from cablefem.motion import body_motion
-from cablefem.network import BodyPointPath
-from cablefem.run import anchor_path, boundary_path, build_system, start_states
-from cablefem.schemes import integrator_options
+from cablefem.model.motion import body_motion
+from cablefem.model.network import BodyPointPath
+from cablefem.model.network import anchor_path, boundary_path
+from cablefem.fem.system import build_system
+from cablefem.statics.scene import start_states
+from cablefem.dynamics.schemes import integrator_options
 from validation.moordyn import peer
 
 

@@ -12,10 +12,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from cablefem.line import Line
-from cablefem.run import build_system
-from cablefem.touchdown import solve_line
-from cablefem.scene import Contact
+from cablefem.model.line import Line
+from cablefem.fem.system import build_system
+from cablefem.statics.touchdown import solve_line
+from cablefem.model.scene import Contact
 
 from validation.moordyn.inputs import GRAVITY, WATER_DENSITY
 
@@ -76,7 +76,7 @@ def cablefem_statics(scene, net, order=1, factor=1, stiffness=STIFF_KBOT, tolera
                     solver=replace(scene.solver, tolerance=tolerance, max_iterations=200))
     tensions, points = {}, {}
     for line in scene.lines:
-        # a vertex fitted to the touchdown (cablefem.touchdown): the element order then pays off
+        # a vertex fitted to the touchdown (cablefem.statics.touchdown): the element order then pays off
         system, result = solve_line(line, scene.seabed, scene.contact, scene.environment, tolerance=tolerance,
                                     max_iterations=200, sections=scene.load_settings)
         X = result.X
@@ -146,10 +146,10 @@ def moorpy_free(net, tol=1e-10):
 
 
 def cablefem_free(scene, order=1, factor=1, stiffness=STIFF_KBOT, tolerance=1e-10):
-    """cablefem's network statics (``cablefem.coupling.solve_network``) of ``scene`` with its body
+    """cablefem's network statics (``cablefem.statics.network.solve_network``) of ``scene`` with its body
     free: reference point, rotation matrix, every line's (TA, TB) and the free points' positions."""
-    from cablefem.coupling import solve_network
-    from cablefem.network import rotation
+    from cablefem.statics.network import solve_network
+    from cablefem.model.network import rotation
 
     lines = [replace(line, segments=tuple(replace(seg, elements=seg.elements * factor) for seg in line.segments),
                      order=order) for line in scene.lines]

@@ -3,7 +3,7 @@ padeye tension relaxes as the embedded chain cuts its trench (rui2025 Sec. 1, af
 and Xiong et al. 2017's inverse catenary shakedown).
 
 The line of Case 1 (850 m, padeye 10 m below the mudline, [soil] as in Sec. 4) is pretensioned by its
-path (``cablefem.pretension``), then ``cablefem run`` moves its fairlead harmonically along the line's
+path (``cablefem.statics.pretension``), then ``cablefem run`` moves its fairlead harmonically along the line's
 vertical plane (surge ``AMPLITUDE`` [m] at ``PERIOD`` [s], ramped in over the first period). Each
 cycle pulls the embedded chain up through the clay, which yields and keeps the trench: the next pull
 finds the chain higher and straighter, the soil above it weaker, and the padeye gets less of the
@@ -22,8 +22,8 @@ from pathlib import Path
 
 import numpy as np
 
-from cablefem.run import run_scene
-from cablefem.scene import Motion, Output
+from cablefem.runs.run import run_scene
+from cablefem.model.scene import Motion, Output
 from cablefem.study import write_json
 
 from . import run as study

@@ -10,10 +10,10 @@ three-line scene and checks that its lines agree. Runs (``python -m validation.r
 
 - the conventional model: padeye fixed on the mudline, no soil, the seabed a frictionless contact
   (``cablefem static`` of the scene without [soil]), and the frictionless elastic catenary with the
-  volume-equivalent diameter 1.8 d_b (``cablefem.catenary``); rui2025: 2437 kN at 56.4 deg;
+  volume-equivalent diameter 1.8 d_b (``cablefem.statics.catenary``); rui2025: 2437 kN at 56.4 deg;
 - Case 1: 850 m, padeye 10 m below the mudline; Case 2: 840 m, padeye on the mudline; Case 3:
   850 m, padeye on the mudline; all with soil, installed by the pretension path (``installation =
-  "laid"``, ``cablefem.pretension``); rui2025: ~2665 (Case 2 is 14.6 % above it, Case 3 7.6 %
+  "laid"``, ``cablefem.statics.pretension``); rui2025: ~2665 (Case 2 is 14.6 % above it, Case 3 7.6 %
   below), 3059, 2462 kN at the fairlead, 960 kN at Case 3's padeye;
 - Case 3 installed as ``"catenary"`` (no path: the soil unloaded at the frictionless equilibrium);
 - the sensitivity of Cases 1-3 to the bearing factor N_c (7.6, 9, 11.5, 14) and to the mesh
@@ -26,16 +26,16 @@ from pathlib import Path
 
 import numpy as np
 
-from cablefem.catenary import elastic_catenary
+from cablefem.statics.catenary import elastic_catenary
 from cablefem.geometry import Horizontal
 from cablefem.io.checks import check_scene
-from cablefem.line import Line, LineType, Segment
-from cablefem.pretension import resting_depth, solve_pretension
-from cablefem.results import report
+from cablefem.model.line import Line, LineType, Segment
+from cablefem.statics.pretension import resting_depth, solve_pretension
+from cablefem.runs.results import report
 from cablefem.study import write_json
-from cablefem.run import build_system
-from cablefem.scene import Environment, Scene
-from cablefem.statics import solve_line
+from cablefem.fem.system import build_system
+from cablefem.model.scene import Environment, Scene
+from cablefem.statics.touchdown import solve_line
 
 HERE = Path(__file__).resolve().parent
 

@@ -9,10 +9,11 @@ from scipy.optimize import brentq
 
 from cablefem import ConvergenceError, Line, LineType, Segment
 from cablefem.geometry import Horizontal
-from cablefem.results import end_forces
-from cablefem.scene import Contact, Environment
-from cablefem.statics import solve_line, solve_static
-from cablefem.system import LineSystem
+from cablefem.runs.results import end_forces
+from cablefem.model.scene import Contact, Environment
+from cablefem.statics.touchdown import solve_line
+from cablefem.statics.solve import solve_static
+from cablefem.fem.system import LineSystem
 
 #: barreiro2015's two lines: submerged weight [N/m]
 WEIGHTS = {"line1": 850.0, "line2": 1000.0}

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from cablefem.catenary import elastic_catenary
+from cablefem.statics.catenary import elastic_catenary
 
 from validation.spread_mooring.lines import EA, HEIGHT, LENGTH, barreiro_line
 from validation.spread_mooring.spread import ANCHOR_AZIMUTHS, DIRECTIONS, _unit, spread_forces, spread_layout

@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from cablefem.catenary import elastic_catenary
+from cablefem.statics.catenary import elastic_catenary
 
 from validation.spread_mooring.lines import DRAFT, EA, HEIGHT, LENGTH, WEIGHTS, _relative, barreiro_line, fem_line
 

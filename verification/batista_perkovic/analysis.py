@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from cablefem.catenary import inclined_catenary
+from cablefem.statics.catenary import inclined_catenary
 from cablefem.study import observed_orders
 
 from verification.batista_perkovic.case import (DIAMETER, EA, ELEMENTS, FAST_ELEMENTS, FORCES, HEIGHT, LENGTH, MESHES,

@@ -6,11 +6,11 @@ import math
 
 import numpy as np
 
-from cablefem.catenary import inclined_catenary, inclined_catenary_from_force
+from cablefem.statics.catenary import inclined_catenary, inclined_catenary_from_force
 from cablefem.geometry import Plane
-from cablefem.line import Line, LineType, Segment
-from cablefem.results import report
-from cablefem.scene import Contact, Environment
+from cablefem.model.line import Line, LineType, Segment
+from cablefem.runs.results import report
+from cablefem.model.scene import Contact, Environment
 from cablefem.study import position_errors, solve_on_mesh
 
 # desire2023 Table 2 and Sec. 3 (EA as the text gives it; Table 2 rounds it to 5e11)
@@ -22,7 +22,7 @@ WATER_DENSITY = 1025.0  # kg/m^3
 GRAVITY = 9.8  # m/s^2, desire2023 Sec. 2.2
 PAPER_STIFFNESS = 3e14  # N/m^3, G_K
 SLOPE = math.radians(-15.0)  # falls from the anchor towards the fairlead
-HEIGHT = 83.766  # m, fairlead above the anchor (cablefem.catenary docstring)
+HEIGHT = 83.766  # m, fairlead above the anchor (cablefem.statics.catenary docstring)
 FORCES = (3.5e6, 3.7e6, 4.0e6, 4.3e6, 4.5e6)  # N, horizontal tension at the fairlead
 NODES = 32
 TABLE3_NODES = (2, 6, 9, 12, 16, 19, 22, 25, 29)  # rounded 10th..90th percentiles of 0..31

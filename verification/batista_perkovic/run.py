@@ -6,7 +6,7 @@ for five fairlead pulls H. Run ``python -m verification.batista_perkovic.run
 [--fast] [--out DIR] [--force H] [--stiffness G_K]``; ``run(fast=True)``
 returns the numbers tests/test_verification_statics.py asserts on.
 
-Geometry (the finding of ``cablefem.catenary``'s docstring): H is the
+Geometry (the finding of ``cablefem.statics.catenary``'s docstring): H is the
 horizontal tension at the fairlead, the fairlead sits a fixed h = 83.766 m
 above the anchor, the seabed falls 15 deg from the anchor towards the
 fairlead (slope = -15 deg), the line weighs (835.4 - 1025 pi d^2/4) 9.8 N/m

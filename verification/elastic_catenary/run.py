@@ -1,12 +1,12 @@
 """Elastic catenary on a flat and on an inclined seabed: FEM against the closed form.
 
-The closed forms of ``cablefem.catenary`` (``elastic_catenary``: Jonkman 2007,
+The closed forms of ``cablefem.statics.catenary`` (``elastic_catenary``: Jonkman 2007,
 the model of MAP++ and MoorPy; ``inclined_catenary`` with finite EA: Batista &
 Perkovic 2019 made elastic) against cablefem's statics for the desire2023
 Table 5 chain (EA = 3.15e9 N), frictionless, with the anchor on the seabed and
 the fairlead 100 m above it, 635 m of line:
 
-- flat: anchor (-595, 0, -100), the flume geometry of ``cablefem.scenes``;
+- flat: anchor (-595, 0, -100), the flume geometry of ``cablefem.model.builtin``;
 - inclined: the seabed rises 5 deg from the anchor towards the fairlead,
   anchor (-615, 0, -100): taut to the anchor (a frictionless up-slope would
   let slack line slide down and pile at the anchor).
@@ -26,12 +26,12 @@ from pathlib import Path
 
 import numpy as np
 
-from cablefem.catenary import elastic_catenary, inclined_catenary
+from cablefem.statics.catenary import elastic_catenary, inclined_catenary
 from cablefem.geometry import Horizontal, Plane
-from cablefem.line import Line, Segment
-from cablefem.results import report
-from cablefem.scene import Contact, Environment
-from cablefem.scenes import table5_chain
+from cablefem.model.line import Line, Segment
+from cablefem.runs.results import report
+from cablefem.model.scene import Contact, Environment
+from cablefem.model.builtin import table5_chain
 from cablefem.study import observed_orders, position_errors, solve_on_mesh, write_json
 
 HERE = Path(__file__).resolve().parent

@@ -23,7 +23,7 @@ The reference: the equations integrated with scipy (``solve_ivp``, rtol 1e-10) f
 (T_a, theta_a) up to the mudline, which gives the line's length L and where it reaches the mudline.
 cablefem gets that chain (padeye, mudline point, L) and is driven to full mobilisation: the chain
 starts 2 m behind on the reference's shape with the soil unloaded, and both ends are dragged
-horizontally onto their places (``cablefem.pretension.LoadPath``): every point of an inverse
+horizontally onto their places (``cablefem.statics.pretension.LoadPath``): every point of an inverse
 catenary then slides along the chain (e_x . t = cos theta > 0) and cuts towards the chord
 (e_x . n = -sin theta < 0) by far more than the springs' elastic offsets 1/k, so every point ends at
 yield in the directions the equations assume (checked: ``mobilised``). The study reports cablefem's
@@ -42,13 +42,13 @@ from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq, fsolve
 
 from cablefem.geometry import Horizontal
-from cablefem.line import Line, LineType, Segment
+from cablefem.model.line import Line, LineType, Segment
 from cablefem.loads.soil import Soil
-from cablefem.pretension import LoadPath
-from cablefem.results import end_forces
+from cablefem.statics.pretension import LoadPath
+from cablefem.runs.results import end_forces
 from cablefem.study import write_json
-from cablefem.scene import Contact, Environment
-from cablefem.system import LineSystem
+from cablefem.model.scene import Contact, Environment
+from cablefem.fem.system import LineSystem
 
 HERE = Path(__file__).resolve().parent
 

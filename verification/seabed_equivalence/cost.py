@@ -30,8 +30,8 @@ def _spread(values):
 def static_cost(folder, repeats=5):
     """(b): CPU seconds of the static solve over the planar mesh, detected and not, and the plane."""
     from cablefem.io import load_scene
-    from cablefem.statics import solve_static
-    from cablefem.system import LineSystem
+    from cablefem.statics.solve import solve_static
+    from cablefem.fem.system import LineSystem
 
     plane_scene = load_scene(Path(folder) / "plane.toml")
     general_scene = load_scene(Path(folder) / "slope_general.toml")
@@ -103,9 +103,9 @@ def dynamic_run(seabed, duration, dt=0.01, kind="flat", count_projection=False, 
     fixed dt marched in compiled runs of steps, modified Newton unless ``modified_newton`` is
     False): (CPU s, wall s of the time steps, integrator, CPU s spent in seabed.project and its
     number of calls when ``count_projection``). Counting needs the calls in Python: those runs
-    take the per-step Python path (``cablefem.march`` projects inside its compiled loop)."""
-    from cablefem.run import StepControl
-    from cablefem.scenes import flume_scene
+    take the per-step Python path (``cablefem.compiled.steps`` projects inside its compiled loop)."""
+    from cablefem.dynamics.step_control import StepControl
+    from cablefem.model.builtin import flume_scene
     from cablefem.study import start_line
 
     scene = replace(flume_scene(kind, "dynamic", duration=duration, dt=dt), seabed=seabed)
@@ -133,10 +133,10 @@ def dynamic_run(seabed, duration, dt=0.01, kind="flat", count_projection=False, 
 
 
 def _run_scene_cpu(seabed, duration):
-    """CPU s of ``cablefem.run.run_scene`` on the flume flat dynamic case over seabed, outputs
+    """CPU s of ``cablefem.runs.run.run_scene`` on the flume flat dynamic case over seabed, outputs
     (VTK frames every 0.1 s, tensions.csv, summary.json) into a scratch folder."""
-    from cablefem.run import run_scene
-    from cablefem.scenes import flume_scene
+    from cablefem.runs.run import run_scene
+    from cablefem.model.builtin import flume_scene
 
     scene = replace(flume_scene("flat", "dynamic", duration=duration), seabed=seabed)
     with tempfile.TemporaryDirectory() as out:
@@ -155,7 +155,7 @@ def dynamic_cost(duration=4.0, repeats=7, fast=False, scene_duration=20.0):
     the flat mesh and on the non-planar steep flume step (the same code, so the flat mesh
     stands for a non-planar one).
     """
-    from cablefem.scenes import flume_seabed
+    from cablefem.model.builtin import flume_seabed
 
     meshes = flat_meshes(fast)
     labels = ["horizontal", *meshes]

@@ -13,7 +13,7 @@ def solve(scene, fit_touchdown=None):
     """Static solve of a loaded scene's first line at TOLERANCE, as ``cablefem static`` does:
     (LineReport, StaticResult). ``fit_touchdown`` False solves a plane on the mesh as given
     (the statics' touchdown fitting, where it exists, applies to planes only)."""
-    from cablefem.cli import solve_scene_static
+    from cablefem.statics.scene import solve_scene_static
 
     settings = {"tolerance": TOLERANCE}
     if fit_touchdown is not None and hasattr(scene.solver, "fit_touchdown"):

@@ -22,7 +22,7 @@ TOLERANCE = 1e-10
 SCENE = """\
 name = "{name}"
 
-[line_types.chain]    # desire2023 Table 5 (cablefem.scenes.table5_chain)
+[line_types.chain]    # desire2023 Table 5 (cablefem.model.builtin.table5_chain)
 diameter = 0.3539
 mass = 835.4
 EA = 3.15e9

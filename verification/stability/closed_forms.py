@@ -5,13 +5,13 @@ import math
 
 import numpy as np
 
-from cablefem.catenary import elastic_catenary, inclined_catenary
-from cablefem.line import Line, LineType, Segment
-from cablefem.motion import fairlead_motion
-from cablefem.run import build_system
-from cablefem.scene import Contact, Friction, Motion, Scene, Solver
-from cablefem.scenes import FLUME_DEPTH, table5_chain
-from cablefem.statics import solve_static
+from cablefem.statics.catenary import elastic_catenary, inclined_catenary
+from cablefem.model.line import Line, LineType, Segment
+from cablefem.model.motion import fairlead_motion
+from cablefem.fem.system import build_system
+from cablefem.model.scene import Contact, Friction, Motion, Scene, Solver
+from cablefem.model.builtin import FLUME_DEPTH, table5_chain
+from cablefem.statics.solve import solve_static
 
 from verification.stability.driver import (LENGTH, flume_like, raised_cosine, sample, series, simulate, summary,
                                            table_motion)

@@ -9,12 +9,12 @@ import numpy as np
 
 from cablefem.errors import ConvergenceError
 from cablefem.geometry import Horizontal
-from cablefem.line import Line, Segment
+from cablefem.model.line import Line, Segment
 from cablefem.loads import State
 from cablefem.loads.added_mass import AddedMass
 from cablefem.loads.drag import Drag
-from cablefem.scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
-from cablefem.scenes import FLUME_DEPTH, table5_chain
+from cablefem.model.scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
+from cablefem.model.builtin import FLUME_DEPTH, table5_chain
 from cablefem.study import start_line
 
 LENGTH = 635.0  # m, the desire2023 line (Tables 2 and 5)

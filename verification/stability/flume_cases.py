@@ -9,12 +9,13 @@ import tempfile
 import numpy as np
 
 from cablefem.errors import ConvergenceError
-from cablefem.line import Line
-from cablefem.motion import fairlead_motion
-from cablefem.run import build_system, run_scene
-from cablefem.scene import Friction, Motion, Output
-from cablefem.scenes import FLUME_ANCHOR, FLUME_DEPTH, flume_scene
-from cablefem.statics import solve_static
+from cablefem.model.line import Line
+from cablefem.model.motion import fairlead_motion
+from cablefem.fem.system import build_system
+from cablefem.runs.run import run_scene
+from cablefem.model.scene import Friction, Motion, Output
+from cablefem.model.builtin import FLUME_ANCHOR, FLUME_DEPTH, flume_scene
+from cablefem.statics.solve import solve_static
 
 from verification.stability.driver import flume_like, sample, series, simulate, summary
 

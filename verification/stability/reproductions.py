@@ -8,9 +8,9 @@ import tempfile
 import numpy as np
 
 from cablefem.geometry import Horizontal
-from cablefem.line import Line, LineType, Segment
-from cablefem.run import run_scene
-from cablefem.scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
+from cablefem.model.line import Line, LineType, Segment
+from cablefem.runs.run import run_scene
+from cablefem.model.scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
 
 from verification.stability.driver import simulate, summary
 

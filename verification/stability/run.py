@@ -1,8 +1,8 @@
 """Numerical stability on hard cases: stiff lines, snap loads, a convex seabed edge, lying and
 taut lines, a sudden stop and time steps from 1e-4 to 0.1 s (issue 6 item 3).
 
-Each case drives cablefem's own time-domain path (``cablefem.run``: ``start_states``,
-``build_system``, ``boundary_path`` and the integrators of ``cablefem.dynamics``; the
+Each case drives cablefem's own time-domain path (``cablefem.runs.run``: ``start_states``,
+``build_system``, ``boundary_path`` and the integrators of ``cablefem.dynamics.integrator``; the
 time-step sweep goes through ``run_scene`` and reads back the files it writes) and
 reports an error against a closed form or a converged run, or an energy balance:
 

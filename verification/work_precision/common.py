@@ -62,7 +62,7 @@ MOORDYN_ROWS = {"snap": [(20, 5e-3), (40, 2.5e-3), (80, 2.5e-3), (160, 2e-3), (3
 
 class Row(NamedTuple):
     """One cablefem row: element order and count, step dt [s], Newton's relative tolerance, the
-    integrator (``cablefem.dynamics.INTEGRATORS``), generalised-alpha's rho_inf (unused by BDF2) and
+    integrator (``cablefem.dynamics.registry.INTEGRATORS``), generalised-alpha's rho_inf (unused by BDF2) and
     ``[solver] newton`` ("full", as the aligned study runs; "auto", the scenes' default)."""
 
     order: int
@@ -177,7 +177,7 @@ def moordyn_cpu_clock():
 def moordyn_row(motion, segments, dtM, friction=False):
     """MoorDyn at ``segments`` and ``dtM``, frictionless unless ``friction`` (the file's, FricDamp
     scaled with the segments): (t, tension) dict and its CPU seconds."""
-    from cablefem.scenes import flume_scene
+    from cablefem.model.builtin import flume_scene
 
     scene = flume_scene("flat", MOTIONS[motion])
     with moordyn_cpu_clock() as spent:

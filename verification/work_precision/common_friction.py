@@ -14,7 +14,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from cablefem.scenes import flume_scene
+from cablefem.model.builtin import flume_scene
 from validation.moordyn.inputs import FLUME_FILE_SEGMENTS
 from validation.moordyn.runners import COUPLING_DT, run_moordyn_case
 from validation.moordyn_aligned.run import DURATION, FINE_COUPLING, MOORDYN_FILE, MOTIONS, _cached, aligned_scene

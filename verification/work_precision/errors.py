@@ -3,7 +3,7 @@ Pareto front of error against wall time, the ratio table of the two codes, the o
 
 import numpy as np
 
-from cablefem.scenes import FLUME_MOTIONS
+from cablefem.model.builtin import FLUME_MOTIONS
 
 from validation.moordyn.comparison import differences
 from verification.work_precision.runners import MOTIONS

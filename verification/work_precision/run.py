@@ -1,7 +1,7 @@
 """Speed against error (work-precision) on the flat flume chain: cablefem's element orders, element
 counts, time steps and integrators against MoorDyn-C's segment counts and time steps, in one run.
 
-The case is desire2023's Table 5 chain over the flat 100 m seabed (``cablefem.scenes.flume_scene``
+The case is desire2023's Table 5 chain over the flat 100 m seabed (``cablefem.model.builtin.flume_scene``
 "flat"; MoorDyn reads the same line from ``validation/moordyn/inputs/flume_flat.dat``) under two
 fairlead motions, each ramped in over its first period:
 

@@ -12,14 +12,14 @@ from pathlib import Path
 
 import numpy as np
 
-from cablefem.scenes import flume_scene, table5_chain
+from cablefem.model.builtin import flume_scene, table5_chain
 
 from validation.moordyn.inputs import FLUME_FILE_SEGMENTS, FLUME_LENGTH
 from validation.moordyn.runners import COUPLING_DT, run_moordyn_case
 from verification.work_precision.runs import CablefemSettings, run_cablefem_scene
 
 MOORDYN_FILE = Path(__file__).resolve().parents[2] / "validation" / "moordyn" / "inputs" / "flume_flat.dat"
-#: study name -> cablefem.scenes motion name
+#: study name -> cablefem.model.builtin motion name
 MOTIONS = {"slow-surge": "quasi-static", "snap": "dynamic"}
 
 #: MoorDyn time steps tried: divisors of the coupling step, so that every substep has the same dtM

@@ -57,10 +57,13 @@ def run_cablefem_scene(scene):
     """cablefem on a one-line ``scene`` with its [solver] settings: dict of t (n,) [s], tension (n,)
     [N] at the fairlead after every step, wall_time_s (statics + set-up + steps) and the counters;
     a run whose Newton fails even at the smallest step has ``failed`` (the message) instead."""
-    from cablefem.dynamics import INTEGRATORS
+    from cablefem.dynamics.registry import INTEGRATORS
     from cablefem.errors import ConvergenceError
-    from cablefem.run import StepControl, boundary_path, build_system, start_states
-    from cablefem.schemes import integrator_options
+    from cablefem.dynamics.step_control import StepControl
+    from cablefem.model.network import boundary_path
+    from cablefem.fem.system import build_system
+    from cablefem.statics.scene import start_states
+    from cablefem.dynamics.schemes import integrator_options
 
     solver, line = scene.solver, scene.lines[0]
     start = time.perf_counter()

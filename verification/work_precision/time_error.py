@@ -28,7 +28,7 @@ import numpy as np
 if __package__ in (None, ""):
     sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
-from cablefem.scenes import flume_scene, table5_chain  # noqa: E402
+from cablefem.model.builtin import flume_scene, table5_chain  # noqa: E402
 from cablefem.study import write_json  # noqa: E402
 from validation.moordyn_aligned.run import WINDOW, aligned_scene, compare, spectrum_bands  # noqa: E402
 from verification.work_precision.runs import run_cablefem_scene  # noqa: E402

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...errors import InputError
+from cablefem.errors import InputError
 
 #: format name -> (seabed kind, module holding ``read(path)``, what the file holds)
 FORMATS = {

@@ -16,9 +16,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ...errors import InputError
-from ..triangulated import TriangulatedSurface
-from . import MAX_COORDINATE
+from cablefem.errors import InputError
+from cablefem.geometry.triangulated import TriangulatedSurface
+from cablefem.geometry.readers import MAX_COORDINATE
 
 #: meshio cell types that are surface polygons, and how to cut them into triangles
 _FANS = {"triangle": [[0, 1, 2]], "quad": [[0, 1, 2], [0, 2, 3]]}

@@ -17,9 +17,10 @@ are skipped.
 
 import numpy as np
 
-from ...errors import InputError
-from ..grid import DepthGrid
-from . import MAX_COORDINATE, count, is_integer, match_axis, numbers, read_lines, strictly_increasing
+from cablefem.errors import InputError
+from cablefem.geometry.grid import DepthGrid
+from cablefem.geometry.readers import (MAX_COORDINATE, count, is_integer, match_axis, numbers, read_lines,
+    strictly_increasing)
 
 
 def matches(head):

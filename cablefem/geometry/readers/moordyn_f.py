@@ -20,9 +20,9 @@ are skipped.
 
 import numpy as np
 
-from ...errors import InputError
-from ..grid import DepthGrid
-from . import count, numbers, read_lines, strictly_increasing
+from cablefem.errors import InputError
+from cablefem.geometry.grid import DepthGrid
+from cablefem.geometry.readers import count, numbers, read_lines, strictly_increasing
 
 
 def matches(head):

@@ -11,9 +11,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ...errors import InputError
-from ..triangulated import TriangulatedSurface
-from . import check_coordinates, parse_number
+from cablefem.errors import InputError
+from cablefem.geometry.triangulated import TriangulatedSurface
+from cablefem.geometry.readers import check_coordinates, parse_number
 
 
 def parse(lines):

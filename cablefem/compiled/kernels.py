@@ -1,0 +1,369 @@
+"""The compiled evaluation of a line's step residual and banded tangent, composed from the load
+catalog (numba; docs/architecture.md, "The compiled path").
+
+For the loads of ``cablefem.loads.catalog`` and the consistent mass, ``assemble`` computes the
+residual M A + G and the tangent g_x (K + v_x C + a_x (M + M_a)) in one loop over elements and
+quadrature points, straight into LAPACK's banded storage with the unknowns ordered along the line.
+At each point it fills a context record (``CONTEXT``: position, its derivatives, velocity,
+acceleration, the unit tangent, the seabed's projection, the step's factors) and calls the loads
+of the point's rule that the line has, in catalog order (``full_point``, ``reduced_point``: a loop
+over the catalog's tuple of point kernels, which numba unrolls into direct calls, each behind the
+line's flag for it: a catalog load a scene does not use costs a flag test, not a call). Each load reads its parameters by
+name from the element's record (``p.drag.normal``), writes its branch state to the point's state
+record, reads its holds and its committed history, writes its trial history, and adds its force
+and Jacobian blocks to the output record (``OUT``: f, A = -(f_r + v_x f_v + a_x f_a),
+B = -f_dr at full points; the flux N and D = N_dr + v_x N_dv at reduced ones).
+
+The kernels run with numba's reference counting off (``_nrt=False``: they allocate nothing; with
+it on, every scratch view and array argument costs an atomic increment and decrement, which was
+3/4 of a point's time). The reference is the numpy face of each load assembled through
+scikit-fem (``cablefem.fem.system``); ``tests/test_catalog.py`` and ``tests/test_fused.py`` hold them
+equal to round-off.
+"""
+
+import warnings
+from collections import namedtuple
+
+import numpy as np
+from numba import literal_unroll, njit
+from numba import uint64 as _index
+from numba.core.errors import NumbaExperimentalFeatureWarning
+
+from cablefem.loads import catalog
+
+# numba marks the catalog's tuple of functions "first-class", an experimental feature; literal_unroll
+# resolves each call statically (measured: as fast as direct calls)
+warnings.filterwarnings("ignore", category=NumbaExperimentalFeatureWarning)
+
+LAYOUT = catalog.layout()
+FULL_KERNELS, REDUCED_KERNELS, NODE_KERNELS = LAYOUT.full_kernels, LAYOUT.reduced_kernels, LAYOUT.node_kernels
+FULL_RULES, REDUCED_RULES = LAYOUT.full_rules, LAYOUT.reduced_rules
+
+#: what a point kernel sees of its point (set by ``assemble``); t, stretch and P at full points only
+#: (P, the normal projector I - t t^T, only when a tangent is assembled); which loads of each rule the
+#: line has (``Points.full_loads``, ``reduced_loads``: read from the context, not passed, because
+#: an argument more per point cost more instructions than the calls it saves)
+CONTEXT = np.dtype([("r", "f8", (3,)), ("dr", "f8", (3,)), ("v", "f8", (3,)), ("dv", "f8", (3,)),
+                    ("a", "f8", (3,)), ("t", "f8", (3,)), ("stretch", "f8"), ("P", "f8", (3, 3)),
+                    ("gap", "f8"), ("n", "f8", (3,)), ("grad_gap", "f8", (3,)), ("dn", "f8", (3, 3)),
+                    ("curved", "?"), ("v_x", "f8"), ("a_x", "f8"), ("jac", "?"), ("held", "?"),
+                    ("full_loads", "u1", (len(FULL_KERNELS),)), ("reduced_loads", "u1", (len(REDUCED_KERNELS),))],
+                   align=True)
+#: what a point kernel adds to
+OUT = np.dtype([("f", "f8", (3,)), ("A", "f8", (3, 3)), ("B", "f8", (3, 3)), ("N", "f8", (3,)),
+                ("D", "f8", (3, 3))], align=True)
+
+#: a line's mesh as the loop reads it: element DOFs (nel, nloc), band positions (N,), basis values,
+#: derivatives and weights at the full and reduced points, mass per length (nel,), band widths, the
+#: first and last band position of an unknown (1 and N - 2 between two prescribed ends, 0 and N - 1
+#: between two free ones), and the vertices of the node loads (k,)
+Mesh = namedtuple("Mesh", "dofs position phi dphi dx rphi rdphi rdx mass kl ku lo hi nodes")
+#: the seabed at the full points: a plane (nx, ny, nz, offset), or an empty plane and the
+#: projection's gap (nel, nq), normal, its gradient (nel, nq, 3) and the normal's (nel, nq, 3, 3)
+Bed = namedtuple("Bed", "plane gap normal grad_gap dnormal")
+#: the records of ``cablefem.loads.catalog``: parameters (nel,), and per full (nel, nq) and reduced
+#: (nel, nr) point the committed and trial history, the branch state and the holds; the node loads'
+#: parameters (k,); which full and reduced loads of the catalog the line has (bool, in catalog
+#: order: the point loops call only those, so that a load a scene does not use costs no call)
+Points = namedtuple("Points", "params full_old full_new full_state full_hold "
+                              "reduced_old reduced_new reduced_state reduced_hold nodes full_loads reduced_loads")
+#: scratch: a context and an output record, the loads' matrices (k, 3, 3) and vectors (k, 3), an
+#: element's rows (nloc, 3) and matrix (nloc, 3, nloc, 3)
+Work = namedtuple("Work", "ctx out M u Re Ke")
+
+
+def records(dtype, shape):
+    """A zeroed record array of ``dtype`` and ``shape``."""
+    return np.zeros(shape, dtype=dtype)
+
+
+def points(params, history, nq, nr, nodes):
+    """Per-point records (``Points``) for ``params`` (nel,) with nq full and nr reduced points: the
+    history of a ``LineSystem`` (``system.history``, shared: the compiled and the numpy path commit
+    the same records), fresh branch state and holds; ``nodes``: the node loads' parameters (k,)."""
+    L, nel = LAYOUT, params.shape[0]
+    (full_old, full_new), (reduced_old, reduced_new) = history["full"], history["reduced"]
+    return Points(params, full_old, full_new, records(L.full_state, (nel, nq)), records(L.full_hold, (nel, nq)),
+                  reduced_old, reduced_new, records(L.reduced_state, (nel, nr)), records(L.reduced_hold, (nel, nr)),
+                  nodes, active(params, L.full), active(params, L.reduced))
+
+
+def active(params, specs):
+    """Which of ``specs`` the parameter records ``params`` (nel,) hold a load of (their ``active``
+    flags, set by ``fused.pack_params``), bool (len(specs),)."""
+    return np.array([bool(params[s.name]["active"].any()) for s in specs], dtype=np.bool_)
+
+
+def work(nloc):
+    """Fresh scratch (``Work``) for elements of nloc DOFs."""
+    return Work(records(CONTEXT, 1), records(OUT, 1), np.zeros((LAYOUT.matrices, 3, 3)),
+                np.zeros((LAYOUT.vectors, 3)), np.zeros((nloc, 3)), np.zeros((nloc, 3, nloc, 3)))
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def full_point(ctx, p, old, new, state, hold, out, M, u):
+    """The full-point loads of the catalog the line has (``ctx.full_loads``), in order, into
+    ``out`` (f, A, B zeroed first)."""
+    out.f[:] = 0.0
+    if ctx.jac:
+        out.A[:, :] = 0.0
+        out.B[:, :] = 0.0
+    k = 0
+    for kernel in literal_unroll(FULL_KERNELS):
+        if ctx.full_loads[k]:
+            kernel(ctx, p, old, new, state, hold, out, M, u)
+        k += 1
+
+
+@njit(cache=True, _nrt=False)
+def reduced_point(ctx, p, old, new, state, hold, out, M, u):
+    """The reduced-point loads of the catalog the line has (``ctx.reduced_loads``), in order, into
+    ``out`` (N, D zeroed first)."""
+    out.N[:] = 0.0
+    if ctx.jac:
+        out.D[:, :] = 0.0
+    k = 0
+    for kernel in literal_unroll(REDUCED_KERNELS):
+        if ctx.reduced_loads[k]:
+            kernel(ctx, p, old, new, state, hold, out, M, u)
+        k += 1
+
+
+@njit(cache=True, _nrt=False)
+def node_point(ctx, p, out, M, u):
+    """Every node load of the catalog, in order, into ``out`` (f, A zeroed first)."""
+    out.f[:] = 0.0
+    if ctx.jac:
+        out.A[:, :] = 0.0
+    for kernel in literal_unroll(NODE_KERNELS):
+        kernel(ctx, p, p, p, p, p, out, M, u)
+
+
+@njit(cache=True, _nrt=False)
+def assemble_nodes(mesh, pts, work, state, factors, jac, rows, band):
+    """The node loads at their vertices (``mesh.nodes``): -f added to the rows (N, 3) and, with
+    ``jac``, the 3 x 3 block A to the band's diagonal (unknown vertices only)."""
+    X, V, Acc = state
+    ctx, out, M, u = work.ctx[0], work.out[0], work.M, work.u
+    ctx.v_x, ctx.a_x = factors
+    ctx.jac = jac
+    kl, ku = mesh.kl, mesh.ku
+    for k in range(mesh.nodes.shape[0]):
+        i = mesh.nodes[k]
+        for a in range(3):
+            ctx.r[a], ctx.v[a], ctx.a[a] = X[i, a], V[i, a], Acc[i, a]
+        node_point(ctx, pts.nodes[k], out, M, u)
+        for a in range(3):
+            rows[i, a] -= out.f[a]
+        pi = mesh.position[i]
+        if not jac or pi < mesh.lo or pi > mesh.hi:
+            continue
+        for a in range(3):
+            for b in range(3):
+                row = 3 * (pi - mesh.lo) + a
+                col = 3 * (pi - mesh.lo) + b
+                band[kl + ku + row - col, col] += out.A[a, b]
+
+
+@njit(cache=True, _nrt=False)
+def _kinematics(ctx, mesh, X, V, Acc, e, g):
+    """Position, its derivative, velocity and acceleration at full point g of element e, and the
+    unit tangent, the stretch and (with a tangent) the normal projector."""
+    r, dr, v, acc = ctx.r, ctx.dr, ctx.v, ctx.a
+    r[:] = 0.0
+    dr[:] = 0.0
+    v[:] = 0.0
+    acc[:] = 0.0
+    for l in range(mesh.dofs.shape[1]):
+        i = _index(mesh.dofs[e, l])
+        for a in range(3):
+            r[a] += mesh.phi[l, e, g] * X[i, a]
+            dr[a] += mesh.dphi[l, e, g] * X[i, a]
+            v[a] += mesh.phi[l, e, g] * V[i, a]
+            acc[a] += mesh.phi[l, e, g] * Acc[i, a]
+    stretch = np.sqrt(dr[0] * dr[0] + dr[1] * dr[1] + dr[2] * dr[2])
+    ctx.stretch = stretch
+    divisor = stretch if stretch > 0.0 else np.inf  # coincident points: t = 0 (loads.unit_tangent)
+    for i in range(3):
+        ctx.t[i] = dr[i] / divisor
+    if ctx.jac:
+        for i in range(3):
+            for j in range(3):
+                ctx.P[i, j] = (1.0 if i == j else 0.0) - ctx.t[i] * ctx.t[j]
+
+
+@njit(cache=True, _nrt=False)
+def _seabed(ctx, bed, e, g):
+    """The seabed's projection at full point g of element e: computed on a plane, read otherwise
+    (a point on a flat part of a mesh or grid has no normal gradient: ``curved`` is off)."""
+    if bed.plane.shape[0] == 4:
+        r = ctx.r
+        ctx.gap = (bed.plane[0] * r[0] + bed.plane[1] * r[1] + bed.plane[2] * r[2]) - bed.plane[3]
+        for a in range(3):
+            ctx.n[a] = bed.plane[a]
+            ctx.grad_gap[a] = bed.plane[a]
+            for b in range(3):
+                ctx.dn[a, b] = 0.0
+        ctx.curved = False
+        return
+    ctx.gap = bed.gap[e, g]
+    curved = False
+    for a in range(3):
+        ctx.n[a] = bed.normal[e, g, a]
+        ctx.grad_gap[a] = bed.grad_gap[e, g, a]
+        for b in range(3):
+            ctx.dn[a, b] = bed.dnormal[e, g, a, b]
+            curved = curved or ctx.dn[a, b] != 0.0
+    ctx.curved = curved
+
+
+@njit(cache=True, _nrt=False)
+def assemble(mesh, bed, pts, work, state, factors, jac, held, rows, band, elements):
+    """Residual rows M A + G over ``elements`` added to ``rows`` (N, 3) and, with ``jac``, the
+    banded tangent of the free unknowns added to ``band`` (LAPACK's layout); state: (X, V, A),
+    each (N, 3); factors: (v_x, a_x); held: the loads keep the branches the hold records hold
+    (Newton's corrections). Kernel, so over 12 arguments' worth of data comes in named tuples."""
+    X, V, Acc = state
+    ctx, out, M, u, Re, Ke = work.ctx[0], work.out[0], work.M, work.u, work.Re, work.Ke
+    ctx.v_x, ctx.a_x = factors
+    ctx.jac, ctx.held = jac, held
+    for k in range(pts.full_loads.shape[0]):
+        ctx.full_loads[k] = pts.full_loads[k]
+    for k in range(pts.reduced_loads.shape[0]):
+        ctx.reduced_loads[k] = pts.reduced_loads[k]
+    nq, nr = mesh.dx.shape[1], mesh.rdx.shape[1]
+    for element in elements:
+        e = _index(element)  # unsigned: no wrap-around fix-up on the many accesses by e (banded.py)
+        Re[:] = 0.0
+        if jac:
+            Ke[:] = 0.0
+        p = pts.params[e]
+        for g in range(nq):
+            _kinematics(ctx, mesh, X, V, Acc, e, g)
+            _seabed(ctx, bed, e, g)
+            full_point(ctx, p, pts.full_old[e, g], pts.full_new[e, g], pts.full_state[e, g],
+                       pts.full_hold[e, g], out, M, u)
+            _add_full(Re, Ke, mesh, out, ctx, e, g, jac)
+        for g in range(nr):
+            _reduced_kinematics(ctx, mesh, X, V, e, g)
+            reduced_point(ctx, p, pts.reduced_old[e, g], pts.reduced_new[e, g], pts.reduced_state[e, g],
+                          pts.reduced_hold[e, g], out, M, u)
+            _add_reduced(Re, Ke, mesh, out, e, g, jac)
+        _scatter(Re, Ke, mesh, e, jac, rows, band)
+
+
+@njit(cache=True, inline="always", _nrt=False)  # a call would copy the mesh's arrays per point
+def _add_full(Re, Ke, mesh, out, ctx, e, g, jac):
+    """A full point's force and blocks, and the inertia m a, into the element's rows and matrix."""
+    w = mesh.dx[e, g]
+    m = mesh.mass[e]
+    nloc = mesh.dofs.shape[1]
+    f, acc, a_x = out.f, ctx.a, ctx.a_x
+    for l in range(nloc):
+        for a in range(3):
+            Re[l, a] += w * mesh.phi[l, e, g] * (m * acc[a] - f[a])
+        if jac:
+            for mm in range(nloc):
+                c_v = w * mesh.phi[l, e, g] * mesh.phi[mm, e, g]
+                c_d = w * mesh.phi[l, e, g] * mesh.dphi[mm, e, g]
+                for a in range(3):
+                    for b in range(3):
+                        Ke[l, a, mm, b] += c_v * out.A[a, b] + c_d * out.B[a, b]
+                    Ke[l, a, mm, a] += c_v * a_x * m
+
+
+@njit(cache=True, _nrt=False)
+def _reduced_kinematics(ctx, mesh, X, V, e, g):
+    """dr/ds and dv/ds at reduced point g of element e."""
+    dr, dv = ctx.dr, ctx.dv
+    dr[:] = 0.0
+    dv[:] = 0.0
+    for l in range(mesh.dofs.shape[1]):
+        i = _index(mesh.dofs[e, l])
+        for a in range(3):
+            dr[a] += mesh.rdphi[l, e, g] * X[i, a]
+            dv[a] += mesh.rdphi[l, e, g] * V[i, a]
+
+
+@njit(cache=True, _nrt=False)
+def _add_reduced(Re, Ke, mesh, out, e, g, jac):
+    """A reduced point's flux and its block into the element's rows and matrix."""
+    w = mesh.rdx[e, g]
+    nloc = mesh.dofs.shape[1]
+    for l in range(nloc):
+        for a in range(3):
+            Re[l, a] += w * mesh.rdphi[l, e, g] * out.N[a]
+        if jac:
+            for mm in range(nloc):
+                c_dd = w * mesh.rdphi[l, e, g] * mesh.rdphi[mm, e, g]
+                for a in range(3):
+                    for b in range(3):
+                        Ke[l, a, mm, b] += c_dd * out.D[a, b]
+
+
+@njit(cache=True, _nrt=False)
+def _scatter(Re, Ke, mesh, e, jac, rows, band):
+    """An element's rows into the residual and its matrix into the band (prescribed ends left out)."""
+    nloc = mesh.dofs.shape[1]
+    kl, ku, lo, hi = mesh.kl, mesh.ku, mesh.lo, mesh.hi
+    for l in range(nloc):
+        i = _index(mesh.dofs[e, l])
+        for a in range(3):
+            rows[i, a] += Re[l, a]
+        pi = mesh.position[i]
+        if not jac or pi < lo or pi > hi:
+            continue
+        for mm in range(nloc):
+            pj = mesh.position[_index(mesh.dofs[e, mm])]
+            if pj < lo or pj > hi:
+                continue
+            for a in range(3):
+                for b in range(3):
+                    row = 3 * (pi - lo) + a
+                    col = 3 * (pj - lo) + b
+                    band[_index(kl + ku + row - col), _index(col)] += Ke[l, a, mm, b]
+
+
+@njit(cache=True, _nrt=False)
+def hold_points(pts, base_full, base_reduced, again):
+    """Newton's branch corrections (``cablefem.dynamics.policy``): set the holds of ``pts`` by every load's
+    hold rule at every point, comparing its branch state with the base's (``base_full``,
+    ``base_reduced``: the state records where the rejected Newton step started); ``again``: keep
+    what is held already too. Returns whether anything is held and the holds changed (or not
+    ``again``)."""
+    held, changed = False, False
+    for e in range(pts.full_state.shape[0]):
+        p = pts.params[e]
+        for g in range(pts.full_state.shape[1]):
+            h, c = _hold_full(base_full[e, g], pts.full_state[e, g], pts.full_hold[e, g], p, again)
+            held, changed = held or h, changed or c
+        for g in range(pts.reduced_state.shape[1]):
+            h, c = _hold_reduced(base_reduced[e, g], pts.reduced_state[e, g], pts.reduced_hold[e, g], p, again)
+            held, changed = held or h, changed or c
+    return held and (changed or not again)
+
+
+# one literal_unroll per function: numba mixes up two in one loop nest
+@njit(cache=True, _nrt=False)
+def _hold_full(base, state, hold, p, again):
+    """Every full-point load's hold rule at one point: (anything held, holds changed)."""
+    held, changed = False, False
+    for rule in literal_unroll(FULL_RULES):
+        h, c = rule(base, state, hold, p, again)
+        held, changed = held or h, changed or c
+    return held, changed
+
+
+@njit(cache=True, _nrt=False)
+def _hold_reduced(base, state, hold, p, again):
+    """Every reduced-point load's hold rule at one point: (anything held, holds changed)."""
+    held, changed = False, False
+    for rule in literal_unroll(REDUCED_RULES):
+        h, c = rule(base, state, hold, p, again)
+        held, changed = held or h, changed or c
+    return held, changed
+
+
+def byte_view(records_array):
+    """A record array's bytes as a flat uint8 view (copied by compiled loops, no record types)."""
+    return records_array.reshape(-1).view(np.uint8)

@@ -1,0 +1,363 @@
+"""Implicit time integrators with Newton per step: BDF2 and generalised-alpha, and their registry.
+
+The semi-discrete equation of motion (desire2023 Eq. 1 after the FEM in s) is
+
+    M A + G(X, V, A, t) = 0,
+
+with M the consistent (or lumped) mass and G the loads. The anchor row is fixed and the fairlead
+row follows its prescribed motion. An integrator (a scheme) writes X_{n+1} as the unknown and the
+point where the loads are evaluated, (X, V, A), as affine functions of it (``begin``, ``point``),
+so that the Newton tangent is
+
+    K = g_x (a_x M + dG/dX + v_x dG/dV + a_x dG/dA),   g_x = dX/dX_{n+1}, v_x, a_x the factors.
+
+Everything else is shared: the Newton policy (iterations, line search, branch corrections,
+retries, halving, growth) is ``cablefem.dynamics.policy``, run here on Python ops (``cablefem.dynamics.python_ops``)
+and, for BDF2 and generalised-alpha on the compiled kernel, in numba (``cablefem.compiled.steps``). Like scipy.integrate's
+solvers, an integrator has a ``step()`` and counters (``nfev`` residual evaluations, ``njev``
+tangents, ``nlu`` factorisations, ``newton_iterations``, ``steps``, ``rejected``). A step that
+fails at ``min_dt`` raises a ``ConvergenceError`` with its residual. ``INTEGRATORS`` is the one
+registry; ``integrator_options`` turns a scene's [solver] into their arguments.
+"""
+
+from functools import cached_property
+
+import numpy as np
+import scipy.sparse.linalg as spla
+
+from cablefem.dynamics import policy, python_ops
+from cablefem.errors import ConvergenceError
+from cablefem.fem.forms import mass_matrix
+
+#: the policy on Python ops, for every integrator
+PYTHON = policy.bind(python_ops)
+
+
+def _counter(index):
+    """A property reading and writing ``counters[index]`` (``policy.COUNTERS``)."""
+    return property(lambda self: int(self.counters[index]),
+                    lambda self, value: self.counters.__setitem__(index, value))
+
+
+class Integrator:
+    """Common machinery: state, boundary rows, mass, counters and the policy's Python ops.
+
+    system: a ``LineSystem``; X0, V0: (N, 3) initial state [m, m/s]; ``boundary(t)`` gives the
+    fairlead's position, velocity and acceleration (3,) at time t, ``anchor(t)`` the anchor's (None:
+    fixed where the line has it); an end that is not prescribed (``Line.prescribed``) is an unknown
+    and its path is not used; dt [s]; tolerance: relative
+    residual or relative increment, as in statics. ``compiled`` evaluates with ``cablefem.compiled.evaluator``
+    (every load in the catalog has a compiled face); ``newton`` is "full", "modified" (LU factors
+    kept across iterations and steps) or "auto": modified on the numpy path; with the compiled
+    kernel modified Newton attempt by attempt until a step's kept factors have to be rebuilt (they
+    contract slower than ``CONTRACTION``) or the step fails, then full Newton for the next
+    ``AUTO_FULL_STEPS`` attempts. Subclasses give the scheme: ``begin``, ``point``, ``accept``.
+    """
+
+    name = "integrator"
+    rows_at_state = True  # an accepted step's rows are the state's, read by ``reactions`` (``python_ops.finish``)
+
+    #: contraction factor of modified Newton above which the tangent is rebuilt
+    CONTRACTION = 0.3
+    #: "auto" Newton with the compiled kernel: attempts in full Newton after a modified one had
+    #: to rebuild its factors or failed. Modified Newton saves the tangent and its LU where the
+    #: tangent changes slowly (work-precision slow surge: 0.81x full Newton's time) and costs
+    #: where friction, contact and slack switch (snap: 1.36x). With 20, against full Newton:
+    #: coarse snap runs (dt 0.16 s) the same time, P2 x 40 snap at dt 0.04 s 1.01x, slow surge
+    #: 0.83-0.88x, the scenes' defaults (P1 x 40, dt 0.01 s, tolerance 1e-8) 0.88x in snap and
+    #: 0.64x in slow surge; with 5, slow surge 0.78x but snap 1.07-1.15x; switching only after
+    #: failures (not rebuilds) cost coarse snap runs 10-13 %. A failed modified attempt is
+    #: redone in full Newton: "auto" halves a step only where full Newton fails from its start
+    AUTO_FULL_STEPS = 20
+    #: smallest fraction of a Newton step the residual line search tries
+    MIN_DAMPING = 1.0 / 16.0
+    #: times a rejected full Newton step is solved again from its base with the friction,
+    #: contact and tension branches its trial point reached (``policy.newton``; 0: never). Snap
+    #: loads on the flume chain, P1 x 14 at dt 0.16 s: 13 failed attempts and 1306 evaluations
+    #: without, none and 882 with (verification/work_precision/README.md)
+    MAX_CORRECTIONS = 2
+    #: largest ratio of a step to the one before: variable-step BDF2 is zero-stable for ratios
+    #: below 1 + sqrt(2) (Grigorieff 1983); halved steps grow back by doubling
+    MAX_GROWTH = 2.0
+    #: a step stretches by up to this fraction rather than leave a sliver to the end of dt
+    STRETCH = 1e-3
+
+    def __init__(self, system, X0, boundary, V0=None, t0=0.0, dt=0.01, tolerance=1e-8,
+                 max_iterations=12, lumped=False, min_dt=None, newton="auto", compiled=True, anchor=None):
+        self.system = system
+        fem = system.fem
+        self.fem = fem
+        self.boundary = boundary
+        self.anchor_path = anchor
+        self.t = float(t0)
+        self.X = np.array(X0, dtype=float)
+        self.V = np.zeros_like(self.X) if V0 is None else np.array(V0, dtype=float)
+        self.dt = float(dt)
+        self.min_dt = float(min_dt) if min_dt else self.dt / 1024.0
+        self.tolerance = tolerance
+        self.max_iterations = max_iterations
+        self.lumped = lumped  # the mass M and its free block M_free are assembled on first use
+        self.length = system.line.unstretched_length
+        self.scale = float(np.linalg.norm(system.weight_vector()[fem.free_dofs])) or 1.0
+        self.counters = np.zeros(len(policy.COUNTERS), dtype=np.int64)
+        self.last_h = None  # the last accepted step [s]
+        self.last_residual = float("nan")  # the final relative residual of the last failed attempt
+        self.residual_rows = None  # M A + G at the current state, (N, 3); compiled steps may fill only
+        # the anchor and fairlead rows (the reactions), leaving the others zero
+        self.lu, self.lu_factors = None, None
+        self.fused = None
+        if compiled and not lumped:
+            from cablefem.compiled.evaluator import FusedEvaluator
+
+            self.fused = FusedEvaluator.for_system(system, system.props["mass"])
+        else:  # the numpy path needs the mass (and a lumped one checks its order) at once
+            self.M_free
+        # a compiled tangent costs about a residual and its banded LU a few microseconds, so full
+        # Newton (fewer iterations) wins; on the numpy path kept factors save more than they cost
+        if newton not in ("auto", "full", "modified"):
+            raise ValueError(f"newton must be auto, full or modified, got {newton!r}")
+        self.newton_mode = {"full": policy.FULL, "modified": policy.MODIFIED}.get(
+            newton, policy.SWITCHING if self.fused is not None else policy.MODIFIED)
+        self.full_steps_left = 0  # "auto": attempts still to run in full Newton
+        self.contraction = -1.0  # the kept factors' contraction estimate (policy.newton), < 0: none
+        # positions converge when the force their error makes, EA / h * dx, is below the
+        # tolerance times the weight of an element: dx <= tol w h^2 / EA (floored at round-off)
+        h = float(np.min(np.diff(fem.mesh.p[0])))
+        weight = float(np.max(np.abs(system.weight.dry - system.weight.buoyancy)))
+        extent = float(np.max(np.abs(self.X))) + self.length
+        self.increment_tolerance = max(tolerance * weight * h * h / float(np.max(system.props["EA"])),
+                                       1e3 * np.finfo(float).eps * extent)
+        self.A = self.initial_acceleration()
+
+    # ------------------------------------------------------------------ counters
+    steps, newton_iterations, nfev, njev, nlu, rejected, corrections = map(_counter, range(len(policy.COUNTERS)))
+
+    @cached_property
+    def M(self):
+        """The mass matrix (N 3, N 3), CSR (``forms.mass_matrix``); the compiled steps carry the
+        mass in their kernel, so there it is assembled only if M A is needed at a nonzero A."""
+        return mass_matrix(self.system, self.lumped)
+
+    @cached_property
+    def M_free(self):
+        """The mass matrix's block of the free DOFs, CSR."""
+        return self.M[self.fem.free_vector_dofs][:, self.fem.free_vector_dofs].tocsr()
+
+    @property
+    def settings(self):
+        """The policy's ``Settings`` of the Python ops, from this integrator's attributes."""
+        return self.make_settings(0)
+
+    def make_settings(self, parts):
+        """The policy's ``Settings`` from this integrator's attributes (``parts``: see ``policy``)."""
+        return policy.Settings(self.tolerance, self.increment_tolerance, self.max_iterations, self.MAX_GROWTH,
+                               self.newton_mode, self.CONTRACTION, self.MIN_DAMPING, self.min_dt,
+                               float(self.AUTO_FULL_STEPS), self.STRETCH, self.MAX_CORRECTIONS, parts)
+
+    # ------------------------------------------------------------ helpers
+    def set_boundary(self, X, V, A, t):
+        """Put the prescribed anchor and fairlead rows of X, V, A at their values at time t."""
+        fem = self.fem
+        if fem.prescribed[0]:
+            if self.anchor_path is None:
+                X[fem.anchor_dof] = self.system.line.anchor
+                V[fem.anchor_dof] = 0.0
+                A[fem.anchor_dof] = 0.0
+            else:
+                X[fem.anchor_dof], V[fem.anchor_dof], A[fem.anchor_dof] = self.anchor_path(t)
+        if fem.prescribed[1]:
+            X[fem.fairlead_dof], V[fem.fairlead_dof], A[fem.fairlead_dof] = self.boundary(t)
+
+    def ends_at(self, t):
+        """Positions (2, 3) of the anchor and the fairlead end where their paths have them at t."""
+        anchor = self.system.line.anchor if self.anchor_path is None else self.anchor_path(t)[0]
+        return np.array([anchor, self.boundary(t)[0]], dtype=float)
+
+    def end_positions(self, times):
+        """Positions (m, 2, 3) of the anchor and fairlead ends at ``times`` (m,)."""
+        times = np.asarray(times, dtype=float)
+        ends = np.empty((len(times), 2, 3))
+        ends[:, 1] = self.fairlead_positions(times)
+        if self.anchor_path is None:
+            ends[:, 0] = self.system.line.anchor
+        else:
+            positions = getattr(self.anchor_path, "positions", None)
+            ends[:, 0] = positions(times) if positions is not None else [self.anchor_path(t)[0] for t in times]
+        return ends
+
+    def inertia(self, A):
+        """Rows (N, 3) of M A (zeros, without assembling M, at A = 0: a start at rest)."""
+        if not A.any():
+            return np.zeros(A.shape)
+        return (self.M @ A.ravel()).reshape(A.shape)
+
+    def initial_acceleration(self):
+        """A0 from (M + added mass) A0 = -G(X0, V0) on the free rows (zero at rest in equilibrium)."""
+        fem, system = self.fem, self.system
+        A = np.zeros_like(self.X)
+        X, V = self.X.copy(), self.V.copy()
+        self.set_boundary(X, V, A, self.t)
+        if self.fused is not None:  # the same, compiled: the mass is the tangent's a_x part
+            rows, with_mass = self.fused.evaluate(X, V, A, 0.0, 1.0)
+            if np.linalg.norm(rows[fem.free_dofs]) > 1e-12 * self.scale:
+                mass = with_mass - self.fused.evaluate(X, V, A, 0.0, 0.0)[1]
+                factors = self.fused.factorize(mass)
+                if factors is None:
+                    raise ConvergenceError(f"{self.name}: the mass matrix is singular at t = {self.t:.6g} s "
+                                           "(check the line's mass and added-mass coefficients)")
+                A[fem.free_dofs] = self.fused.solve(factors, rows)
+            return A
+        residual, blocks = system.evaluate(system.state(X, V, A, self.t), jacobian=True,
+                                           velocity_factor=0.0, acceleration_factor=1.0)
+        rhs = -(residual + self.inertia(A))[fem.free_dofs].ravel()
+        if np.linalg.norm(rhs) <= 1e-12 * self.scale:
+            return A
+        # d(G + M A)/dA restricted to the free rows: the acceleration blocks only
+        static = system.evaluate(system.state(X, V, A, self.t), jacobian=True)[1]
+        K = system.matrix(blocks) - system.matrix(static) + self.M_free
+        A[fem.free_dofs] = spla.spsolve(K.tocsc(), rhs).reshape(-1, 3)
+        return A
+
+    # ------------------------------------------------------------ the policy's Python ops
+    def rows_and_tangent(self, X, V, A, t, v_x, a_x, jacobian, stick=False):
+        """Rows M A + G (N, 3) at the evaluation point and, with ``jacobian``, the tangent of the
+        loads and mass in the representation ``increment`` factors (``stick``: held branches)."""
+        if self.fused is not None:
+            self.nfev += 1
+            return self.fused.evaluate(X, V, A, v_x, a_x, jacobian, stick)
+        residual, blocks = self.evaluate(X, V, A, t, v_x, a_x, jacobian)
+        return residual + self.inertia(A), blocks
+
+    def evaluate(self, X, V, A, t, v_x, a_x, jacobian=True):
+        """Load residual rows and tangent blocks (the numpy loads) at an evaluation point."""
+        self.nfev += 1
+        return self.system.evaluate(self.system.state(X, V, A, t), jacobian, v_x, a_x)
+
+    def increment(self, tangent, rows, refactor):
+        """The Newton increment (N_free, 3) for residual ``rows``, with ``refactor`` from fresh LU
+        factors of ``tangent`` (counted, kept), else from the kept ones; None if the tangent is
+        singular or the increment not finite."""
+        if refactor:
+            _, a_x, g_x = self.factors
+            self.njev += 1
+            self.lu = self.factorize(tangent, g_x, a_x)
+            if self.lu is None:
+                return None
+            self.nlu += 1
+            self.lu_factors = self.factors
+        dX = self.solve(self.lu, rows)
+        return dX if np.all(np.isfinite(dX)) else None
+
+    def factorize(self, tangent, g_x, a_x):
+        """LU factors of g_x (K + a_x M), or None when singular."""
+        if self.fused is not None:
+            return self.fused.factorize(tangent, g_x)
+        try:
+            return spla.splu((g_x * (self.system.matrix(tangent) + a_x * self.M_free)).tocsc())
+        except RuntimeError:
+            return None
+
+    def solve(self, factors, rows):
+        """Newton increment (N_free, 3) of the free DOFs for residual rows (N, 3)."""
+        if self.fused is not None:
+            return self.fused.solve(factors, rows)
+        return factors.solve(-rows[self.fem.free_dofs].ravel()).reshape(-1, 3)
+
+    def predict(self, h):
+        """Taylor predictor of the positions at t + h with the prescribed ends at ``self.targets``
+        (``self.guess``)."""
+        fem = self.fem
+        guess = self.X + h * self.V + 0.5 * h * h * self.A
+        if fem.prescribed[1]:
+            guess[fem.fairlead_dof] = self.targets[1]
+        if fem.prescribed[0]:
+            guess[fem.anchor_dof] = self.targets[0]
+        self.guess = guess
+
+    # --------------------------------------------------------------- step
+    def attempt(self, h):
+        """Try one step of size h (``policy.attempt``); update the state and return True on success."""
+        return PYTHON["attempt"](self, h) == policy.CONVERGED
+
+    def step(self, dt=None, first=None):
+        """Advance exactly by dt (default: the current step) [s], as ``policy.advance`` does: a
+        failed attempt is halved (to ``min_dt``), the steps grow back by at most ``MAX_GROWTH``;
+        ``first``: the first attempt's size, when a caller has seen a longer one fail. Returns dt."""
+        target = float(dt or self.dt)
+        status = PYTHON["advance"](self, 0, target, float(first or 0.0))
+        if status == policy.FAILED:
+            raise self.too_small(self.stopped)
+        return target
+
+    def too_small(self, h):
+        """The error of a step of size h whose Newton failed when half of it is below ``min_dt``."""
+        return ConvergenceError(
+            f"{self.name}: Newton did not converge at t = {self.t:.6g} s even with "
+            f"dt = {h:.3g} s (relative residual {self.last_residual:.3g}, tolerance "
+            f"{self.tolerance:g}); try a smaller dt, more elements or a softer seabed",
+            residual=self.last_residual, iterations=self.newton_iterations)
+
+    def march(self, times):
+        """Step to each of ``times`` (ascending, after t) in turn, each as ``step`` does; returns
+        the forces (m, 2, 3) the line exerts on its fairlead and anchor after each step."""
+        forces = np.empty((len(times), 2, 3))
+        for k, t in enumerate(times):
+            try:
+                self.step(t - self.t)
+            except ConvergenceError as error:
+                error.forces = forces[:k]  # the steps taken, for a caller writing them out
+                raise
+            forces[k] = self.reactions()
+        return forces
+
+    def fairlead_positions(self, times):
+        """The prescribed fairlead positions (m, 3) at ``times`` (m,): one vectorised call when the
+        boundary offers ``positions`` (``cablefem.model.motion.FairleadPath``), else one call per time."""
+        positions = getattr(self.boundary, "positions", None)
+        if positions is not None:
+            return positions(np.asarray(times, dtype=float))
+        return np.array([self.boundary(t)[0] for t in times], dtype=float).reshape(-1, 3)
+
+    def snapshot(self):
+        """The state needed to undo steps (see ``restore``): the state, the scheme's memory and the
+        committed history of the points."""
+        history = {rule: old.copy() for rule, (old, _) in self.system.history.items()}
+        return (self.t, self.X, self.V, self.A, self.residual_rows, self.last_h, self.memory(), history)
+
+    def restore(self, snapshot):
+        """Go back to a ``snapshot``."""
+        self.t, self.X, self.V, self.A, self.residual_rows, self.last_h, memory, history = snapshot
+        self.set_memory(memory)
+        for rule, old in history.items():
+            self.system.history[rule][0][...] = old
+
+    def memory(self):
+        """What the scheme keeps of earlier steps (``snapshot``)."""
+        return None
+
+    def set_memory(self, memory):
+        """Put back what ``memory`` returned."""
+
+    def tension_error(self, X_low):
+        """Estimated local error of the last step as a fraction of the line's largest tension:
+        EA |d(dX)/ds| at the axial quadrature points for dX = X - X_low, the difference between
+        the step and a solution of lower order."""
+        fem = self.fem
+        _, d_diff = fem.at_quadrature(self.X - X_low, fem.reduced)
+        _, dr = fem.at_quadrature(self.X, fem.reduced)
+        EA = self.system.props["EA"][:, None]
+        error = EA * np.linalg.norm(d_diff, axis=0)
+        tension = EA * np.maximum(np.linalg.norm(dr, axis=0) - 1.0, 0.0)
+        return float(error.max() / max(tension.max(), 1e-12 * EA.max()))
+
+    def reactions(self):
+        """Forces (3,) the line exerts on its fairlead and anchor at the current state [N]."""
+        rows = self.residual_rows
+        if rows is None:
+            residual, _ = self.system.evaluate(self.system.state(self.X, self.V, self.A, self.t), jacobian=False)
+            rows = residual + self.inertia(self.A)
+        return -rows[self.fem.fairlead_dof], -rows[self.fem.anchor_dof]
+
+    def statistics(self):
+        """Counters as a dict, for summary.json."""
+        return {"integrator": self.name, **{name: int(value) for name, value in zip(policy.COUNTERS, self.counters)}}

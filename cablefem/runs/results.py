@@ -1,0 +1,230 @@
+"""What a solve reports for each line: end forces, tensions, node positions, touchdown.
+
+End forces are the reactions of the discrete system (the residual rows of the
+anchor and fairlead vertices), which for Galerkin FEM are more accurate than
+tensions differentiated from the positions.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass
+class LineReport:
+    """Per-line results [SI]: forces the line exerts on its ends (3,), their magnitudes,
+    vertex positions (n, 3) anchor first, the touchdown arc length (None if no contact), the
+    tension at the vertices (n,) and, for a line in soil, ``soil``: the JSON fields of
+    ``embedment`` (padeye, mudline crossing, embedded length) and of its pretension path."""
+
+    name: str
+    fairlead_force: np.ndarray
+    anchor_force: np.ndarray
+    nodes: np.ndarray
+    touchdown_s: float | None
+    tension: np.ndarray | None = None
+    soil: dict | None = None
+
+    @property
+    def fairlead_tension(self):
+        """Magnitude of the fairlead force [N]."""
+        return float(np.linalg.norm(self.fairlead_force))
+
+    @property
+    def anchor_tension(self):
+        """Magnitude of the anchor force [N]."""
+        return float(np.linalg.norm(self.anchor_force))
+
+    def as_dict(self):
+        """The JSON fields of one line (docs/outputs.md, ``cablefem static``)."""
+        return {
+            "name": self.name,
+            "fairlead_force": self.fairlead_force.tolist(),
+            "anchor_force": self.anchor_force.tolist(),
+            "fairlead_tension": self.fairlead_tension,
+            "anchor_tension": self.anchor_tension,
+            "nodes": self.nodes.tolist(),
+            "touchdown_s": self.touchdown_s,
+            **({} if self.tension is None else {"tension": self.tension.tolist()}),
+            **(self.soil or {}),
+        }
+
+
+def end_forces(system, X, inertia=None):
+    """Forces (3,) the line exerts on its fairlead and anchor [N] at state X (N, 3);
+    ``inertia`` (N, 3) adds the M a rows in dynamics."""
+    R = system.residual(X)
+    if inertia is not None:
+        R = R + inertia
+    return -R[system.fem.fairlead_dof], -R[system.fem.anchor_dof]
+
+
+def touchdown(system, X, samples_per_element=16):
+    """Arc length [m] of the touchdown point: the last point, counted from the anchor, where the
+    line penetrates the seabed (d_G <= 0), refined by root finding between samples; None without contact."""
+    nodes = system.fem.mesh.p[0]
+    fractions = np.linspace(0.0, 1.0, samples_per_element + 1)[:-1]
+    s = np.append((nodes[:-1, None] + np.diff(nodes)[:, None] * fractions).ravel(), nodes[-1])
+    gap = system.gap_at(X, s)
+    touching = np.flatnonzero(gap <= 0.0)
+    if touching.size == 0:
+        return None
+    last = touching[-1]
+    if last == s.size - 1:
+        return float(s[-1])
+    def gap(q):
+        return system.gap_at(X, np.array([q]))[0]
+
+    from scipy.optimize import brentq
+
+    a, b = s[last], s[last + 1]
+    if gap(a) * gap(b) > 0:  # d_G touches zero without crossing: no root to refine
+        return float(a)
+    return float(brentq(gap, a, b, xtol=1e-12 * nodes[-1], rtol=1e-14))
+
+
+def report(system, X, pretension=None):
+    """The ``LineReport`` of one line system at state X. On a plane seabed under the anchor the
+    touchdown is the resting length that the seabed's reaction carries (well conditioned); else
+    the last point of contact (``touchdown``). A line in soil adds its ``embedment`` and, given its
+    ``pretension`` result (``cablefem.statics.pretension.PretensionResult``), the path it took."""
+    from cablefem.statics.touchdown import anchored_on_plane, resting_length
+
+    fairlead, anchor = end_forces(system, X)
+    td = resting_length(system, X) if anchored_on_plane(system.line, system.seabed) else None
+    soil = None
+    if system.has("soil"):
+        soil = embedment(system, X, anchor)
+        if pretension is not None:
+            soil["pretension"] = {"installation": pretension.installation, "steps": pretension.steps,
+                                  "halvings": pretension.halvings, "newton_iterations": pretension.iterations,
+                                  "plastic_dissipation_J": float(np.sum(pretension.dissipation))}
+    return LineReport(system.line.name, fairlead, anchor, X[: system.fem.n_vertices].copy(),
+                      td if td is not None else touchdown(system, X),
+                      node_tension(system, X, np.linalg.norm(anchor), np.linalg.norm(fairlead)), soil)
+
+
+def node_tension(system, X, anchor_tension, fairlead_tension):
+    """Tension [N] at the vertices (n,), anchor first: EA max(|r'| - 1, 0) averaged over the two
+    elements that meet at an interior vertex (r' jumps there), the reactions' magnitudes at the ends."""
+    nodes = system.fem.mesh.p[0]
+    inset = 1e-9 * np.diff(nodes)
+    sides = [nodes[:-1] + inset, nodes[1:] - inset]  # each element's left and right end
+    values = [system.tension_at(X, s) for s in sides]
+    tension = np.empty(len(nodes))
+    tension[1:-1] = 0.5 * (values[1][:-1] + values[0][1:])
+    tension[0], tension[-1] = anchor_tension, fairlead_tension
+    return tension
+
+
+def embedment(system, X, anchor_force):
+    """The soil's JSON fields of a line (DESIGN.md): the force on the padeye (the anchor) and its
+    magnitude, the tension [N] and the angle [deg] between the line and the local surface where the
+    line crosses the seabed surface last (from below, counted from the padeye: where it leaves the
+    soil; None if it never does) and the length [m] of line below the surface."""
+    s, crossings, below = surface_crossings(system, X)
+    leaving = [c for c, up in crossings if up]
+    fields = {"padeye_force": np.asarray(anchor_force).tolist(),
+              "padeye_tension": float(np.linalg.norm(anchor_force)),
+              "mudline_tension": None, "mudline_angle_deg": None, "embedded_length": below}
+    if leaving:
+        at = np.array([leaving[-1]])
+        tangent = system.fem.derivative(X, at)[0]
+        normal = system.seabed.project(system.fem.evaluate(X, at)).direction[0]
+        fields["mudline_tension"] = float(system.tension_at(X, at)[0])
+        fields["mudline_angle_deg"] = float(np.degrees(np.arcsin(np.clip(
+            tangent @ normal / np.linalg.norm(tangent), -1.0, 1.0))))
+    return fields
+
+
+def surface_crossings(system, X, samples_per_element=16):
+    """Where the line crosses the seabed surface: the sample arc lengths (m,), the crossings
+    [(s [m], True if rising out of the soil)] (each refined by root finding) and the length of
+    line below the surface [m]."""
+    from scipy.optimize import brentq
+
+    nodes = system.fem.mesh.p[0]
+    fractions = np.linspace(0.0, 1.0, samples_per_element + 1)[:-1]
+    s = np.append((nodes[:-1, None] + np.diff(nodes)[:, None] * fractions).ravel(), nodes[-1])
+    gap = system.gap_at(X, s)
+    crossings, below, start = [], 0.0, (0.0 if gap[0] < 0.0 else None)
+
+    def at(q):
+        return system.gap_at(X, np.array([q]))[0]
+
+    for k in np.flatnonzero((gap[:-1] < 0.0) != (gap[1:] < 0.0)):
+        a, b = s[k], s[k + 1]
+        root = float(brentq(at, a, b, xtol=1e-12 * nodes[-1], rtol=1e-14)) if at(a) * at(b) < 0 else float(b)
+        rising = gap[k] < 0.0
+        crossings.append((root, rising))
+        if rising and start is not None:
+            below += root - start
+        start = None if rising else root
+    if start is not None:
+        below += float(nodes[-1]) - start
+    return s, crossings, below
+
+
+def sample_arc_lengths(system, per_element=None):
+    """Arc lengths [m] for drawing a line: each element split into ``order`` pieces (n,)."""
+    nodes = system.fem.mesh.p[0]
+    pieces = per_element or system.fem.order
+    fractions = np.linspace(0.0, 1.0, pieces + 1)[:-1]
+    return np.append((nodes[:-1, None] + np.diff(nodes)[:, None] * fractions).ravel(), nodes[-1])
+
+
+class LineSampler:
+    """The basis of one line's FEM at fixed arc lengths s (n,) [m] (default: each element split
+    into ``order`` pieces), evaluated once: frames of a run sample the same points every time."""
+
+    def __init__(self, system, s=None):
+        fem = system.fem
+        self.s = sample_arc_lengths(system) if s is None else np.asarray(s, dtype=float)
+        self.values, self.gradients = fem._local_basis(self.s)  # (n, nloc) each
+        self.element = fem._locate(self.s)[0]
+        self.dofs = fem.element_dofs[self.element]  # (n, nloc)
+
+    def evaluate(self, X):
+        """X (N, 3) at the sample points, (n, 3)."""
+        return np.einsum("nl,nlc->nc", self.values, X[self.dofs])
+
+    def derivative(self, X):
+        """dX/ds (N, 3) at the sample points, (n, 3)."""
+        return np.einsum("nl,nlc->nc", self.gradients, X[self.dofs])
+
+
+def line_fields(system, X, V=None, s=None, sampler=None):
+    """Point data of a line for a VTK frame: positions and, per point, tension [N], strain,
+    velocity [m/s], seabed gap d_G [m] and contact force per unit length [N/m]; at ``s`` or at
+    a ``LineSampler``'s points."""
+    sampler = sampler or LineSampler(system, s)
+    element = sampler.element
+    points = sampler.evaluate(X)
+    stretch = np.linalg.norm(sampler.derivative(X), axis=1)
+    EA = system.props["EA"][element]
+    proj = system.seabed.project(points)
+    stiffness = system.contact.stiffness[element, 0] if system.has("contact") else 0.0 * element
+    contact = (stiffness * np.maximum(-proj.gap, 0.0))[:, None] * proj.direction
+    velocity = np.zeros_like(points) if V is None else sampler.evaluate(V)
+    fields = {"points": points, "tension": EA * np.maximum(stretch - 1.0, 0.0),
+              "strain": stretch - 1.0, "velocity": velocity, "seabed_gap": proj.gap,
+              "contact_force": contact}
+    fields.update(history_fields(system, element))
+    return fields
+
+
+def history_fields(system, element):
+    """The history fields the loads ask to see in frames (``LoadSpec.frames``), each point taking
+    the mean over the quadrature points of its element ``element`` (n,): ``<load>_<field>``."""
+    from cablefem.loads import catalog
+
+    fields = {}
+    for load in system.loads:
+        spec = catalog.spec_of(load)
+        if not spec.frames:
+            continue
+        old = system.history[spec.rule][0]
+        for name in spec.frames:
+            fields[f"{spec.name}_{name}"] = old[spec.name][name].mean(axis=1)[element]
+    return fields
+

@@ -1,0 +1,266 @@
+"""Time-domain runs of a scene: static start, implicit steps, outputs written as the run goes.
+
+A run writes DIR/<name>.pvd with one .vtu per output frame, DIR/seabed.vtu,
+DIR/tensions.csv (one row per time step) and DIR/summary.json (docs/outputs.md).
+Frames and rows are written while the run goes, so memory does not grow
+with the duration, and each is written whole or not at all
+(``cablefem.io.output``): a run stopped by Ctrl-C, SIGTERM, a solver failure
+or a full disk still leaves a valid .pvd listing every complete frame, the
+whole rows computed so far and a summary saying where it stopped; one killed
+outright leaves all of that but the summary.
+"""
+
+import json
+import sys
+import time
+
+import numpy as np
+
+from cablefem.dynamics.junctions import junction_steps
+from cablefem.dynamics.registry import INTEGRATORS
+from cablefem.dynamics.schemes import integrator_options
+from cablefem.dynamics.step_control import StepControl
+from cablefem.errors import ConvergenceError, InputError, OutputError
+from cablefem.fem.system import build_system
+from cablefem.io.checks import check_names, check_run
+from cablefem.io.output import (RowsFile, deferred_signals, failure as write_failure, inside, prepare_folder,
+                                remove_partials, write_atomic)
+from cablefem.io.vtk import TimeSeriesWriter, polyline_mesh
+from cablefem.model.network import anchor_path, boundary_path, dynamic_lines
+from cablefem.runs.network_output import NetworkRows, body_reference, frame_marks
+from cablefem.runs.results import LineSampler, line_fields
+from cablefem.statics.scene import start_states
+
+
+#: largest rho_inf of generalised-alpha that stayed bounded on a stiff taut line at omega dt >> 1
+SAFE_RHO_INF = 0.5
+
+
+def setting_warnings(scene, dt=None):
+    """Warnings about solver settings known to fail on this scene, said before the run starts.
+
+    Generalised-alpha with rho_inf above ``SAFE_RHO_INF`` pumps energy into a line whose
+    highest axial frequency, omega = (2 / h) sqrt(EA / m) for the shortest element h, is
+    not resolved by the step (omega dt > 1): verification/stability, case 7b."""
+    solver = scene.solver
+    dt = float(solver.dt if dt is None else dt)
+    warnings = []
+    if solver.integrator == "generalized-alpha" and solver.rho_inf > SAFE_RHO_INF:
+        omega = max(2.0 / (seg.length / seg.elements / line.order) * np.sqrt(seg.type.EA / seg.type.mass)
+                    for line in scene.lines for seg in line.segments)
+        if omega * dt > 1.0:
+            warnings.append(
+                f"generalized-alpha with rho_inf = {solver.rho_inf:g} > {SAFE_RHO_INF:g} at omega dt = "
+                f"{omega * dt:.3g}: this scheme can pump energy into a stiff line going taut "
+                f"(nonlinear instability); use rho_inf <= {SAFE_RHO_INF:g} or integrator = \"bdf2\"")
+    return warnings
+
+
+def _bounds(scene, margin=0.1):
+    points = np.array([p for line in scene.lines for p in (line.anchor, line.fairlead)])
+    lo, hi = points[:, :2].min(axis=0), points[:, :2].max(axis=0)
+    pad = margin * max(float(np.max(hi - lo)), 1.0)
+    return ((lo[0] - pad, hi[0] + pad), (lo[1] - pad, hi[1] + pad))
+
+
+def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
+    """Run a scene in the time domain and write its outputs; returns the summary dict.
+
+    Before any work: the scene's names and run size are checked (``cablefem.io.checks``) and
+    the output folder is made and probed (``OutputError`` if it cannot be written). Every
+    output is written whole or not at all (``cablefem.io.output``); a run stopped by Ctrl-C,
+    SIGTERM (``raise_on_sigterm``), a solver failure or an output fault still leaves a .pvd
+    listing every complete frame, whole rows of tensions.csv, and a summary.json saying why."""
+    from cablefem.geometry.export import write_seabed_vtu
+
+    check_names(scene)
+    check_run(scene, duration, dt)
+    solver = scene.solver
+    if solver.adaptive and solver.integrator != "bdf2":
+        raise InputError("adaptive steps need integrator = \"bdf2\"", key="solver.adaptive")
+    duration = float(solver.duration if duration is None else duration)
+    dt = float(solver.dt if dt is None else dt)
+    out_dir = prepare_folder(out_dir or scene.output.dir)
+    remove_partials(out_dir, (f"{scene.name}_", f"{scene.name}.pvd", "seabed.vtu", "tensions.csv",
+                              "summary.json"))
+    start = time.perf_counter()
+    summary = {"scene": scene.name, "seabed": scene.seabed.describe(),
+               "notes": list(scene.notes) + setting_warnings(scene, dt), "dt": dt, "duration": duration}
+    integrators, outputs, status = [], {}, "completed"
+    step_control = StepControl(solver, dt)
+    tracker = _Extremes([line.name for line in scene.lines], NetworkRows(scene) if scene.points else None)
+    try:
+        seabed_vtu = inside(out_dir, "seabed.vtu")
+        try:
+            write_seabed_vtu(scene.seabed, seabed_vtu, _bounds(scene))
+        except OSError as error:
+            raise write_failure(error, seabed_vtu) from None
+        integrator_class = INTEGRATORS[solver.integrator]
+        options = integrator_options(solver)
+        systems = [build_system(scene, line) for line in dynamic_lines(scene)]
+        states, summary["static_newton_iterations"] = start_states(scene, systems=systems)
+        integrators += [integrator_class(system, X0, boundary_path(scene, line), dt=dt,
+                                         anchor=anchor_path(scene, line), **options)
+                        for system, line, X0 in zip(systems, scene.lines, states)]
+        junction_steps(scene, integrators)
+        outputs["frames"] = TimeSeriesWriter(out_dir, scene.name)
+        outputs["table"] = RowsFile(inside(out_dir, "tensions.csv"), _columns(scene, tracker.network))
+        outputs["bar"] = _progress(progress, duration)
+        _advance(scene, integrators, outputs, step_control, tracker, duration, dt)
+    except KeyboardInterrupt:
+        status = "interrupted"
+        raise
+    except Exception as error:
+        status = f"stopped: {error}"
+        raise
+    finally:
+        _finish(summary, status, integrators, outputs, step_control, tracker, start, out_dir,
+                reraise=status == "completed")
+    return summary
+
+
+def _advance(scene, integrators, outputs, step_control, tracker, duration, dt):
+    """March every line to ``duration`` [s], writing a row of tensions.csv per step (a batch per
+    output interval) and a VTK frame every ``output.every`` [s]. Ctrl-C and SIGTERM take effect
+    between output intervals (``deferred_signals``; a compiled march does not see them sooner
+    anyway), so that the rows and frames always hold every step taken."""
+    solver, frames, table, bar = scene.solver, outputs["frames"], outputs["table"], outputs["bar"]
+    samplers = [LineSampler(integ.system) for integ in integrators]  # the frames' points, once
+    marks, body_marks = frame_marks(scene)
+    every = scene.output.every if solver.adaptive else max(scene.output.every, dt)
+    near = 1e-6 * dt  # times closer than this are the same time
+    frame = 0  # frames fall at frame * every, not at a sum of steps carrying round-off
+
+    def record(rows):
+        """Write the rows (t, forces) and, if one is due, a frame; the time [s] of the last row."""
+        nonlocal frame
+        table.write(tracker.rows(rows))
+        t = rows[-1][0]
+        if t >= frame * every - near:
+            bodies = [(body_reference(scene.bodies[name], t), rows) for name, rows in body_marks]
+            frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V, sampler=sampler)
+                                           for i, sampler in zip(integrators, samplers)], marks, bodies))
+            frame = int(np.floor((t + near) / every)) + 1
+        return t
+
+    t = record([(integrators[0].t, [integ.reactions() for integ in integrators])])
+    while t < duration - near:
+        with deferred_signals():
+            stop = min(duration, frame * every)
+            if solver.adaptive:
+                step_control.advance(integrators, stop - t)
+                rows = [(integrators[0].t, [integ.reactions() for integ in integrators])]
+            else:  # fixed steps to the next output time, each line in one call
+                rows = _march(integrators, step_control.times(t, stop), lambda rows: table.write(tracker.rows(rows)))
+            if bar is not None:
+                bar.update(rows[-1][0] - t)
+            t = record(rows)
+
+
+def _finish(summary, status, integrators, outputs, step_control, tracker, start, out_dir, reraise):
+    """Close the collection and tensions.csv and write summary.json, with SIGINT and SIGTERM held
+    until they are done. A failure to write (a full disk) is raised if nothing else failed
+    (``reraise``), else that other failure is the one reported."""
+    errors = []
+    with deferred_signals(reraise=reraise):
+        for name in ("frames", "table"):
+            if name in outputs:
+                try:
+                    outputs[name].close()
+                except OutputError as error:
+                    errors.append(error)
+        if outputs.get("bar") is not None:
+            outputs["bar"].close()
+        stats = [integ.statistics() for integ in integrators]
+        summary.update({
+            "status": status, "completed": status == "completed",
+            "simulated_time_s": integrators[0].t if integrators else 0.0,
+            "frames": outputs["frames"].listed if "frames" in outputs else 0,
+            "wall_time_s": time.perf_counter() - start,
+            "steps": sum(s["steps"] for s in stats),
+            "newton_iterations": sum(s["newton_iterations"] for s in stats),
+            "integrator": stats, "tension_extremes": tracker.as_dict(),
+            **({"network_extremes": tracker.network.extremes} if tracker.network is not None else {}),
+            "adaptive": {"accepted": step_control.accepted, "rejected": step_control.rejected}
+            if step_control.adaptive else None})
+        summary.setdefault("static_newton_iterations", 0)
+        try:
+            write_atomic(inside(out_dir, "summary.json"), json.dumps(summary, indent=1))
+        except OutputError as error:
+            errors.append(error)
+    if errors and reraise:
+        raise errors[0]
+
+
+def _march(integrators, times, write):
+    """Every line marched to ``times``: rows (t, [(fairlead, anchor) force per line]). If a line
+    fails, the rows every line reached are given to ``write`` before the error goes on."""
+    forces = []
+    try:
+        for integ in integrators:
+            forces.append(integ.march(times))
+    except ConvergenceError as error:
+        last = len(forces) == len(integrators) - 1  # the lines before it have all the rows
+        reached = len(error.forces) if last else 0
+        if reached:
+            write([(times[k], [f[k] for f in forces + [error.forces]]) for k in range(reached)])
+        raise
+    return [(tk, [f[k] for f in forces]) for k, tk in enumerate(times)]
+
+
+def _row(t, forces, extra=()):
+    """A tensions.csv row: t, then per line fairlead_tension, anchor_tension, fx, fy, fz, from each
+    line's (fairlead, anchor) forces, then the network's ``extra`` values."""
+    values = [t]
+    for fairlead, anchor in forces:
+        values += [np.linalg.norm(fairlead), np.linalg.norm(anchor), *fairlead]
+    return [f"{x:.10g}" for x in [*values, *extra]]
+
+
+def _columns(scene, network=None):
+    names = ["fairlead_tension", "anchor_tension", "fx", "fy", "fz"]
+    extra = [] if network is None else network.columns()
+    if len(scene.lines) == 1:
+        return ["t"] + names + extra
+    return ["t"] + [f"{line.name}:{n}" for line in scene.lines for n in names] + extra
+
+
+def _progress(progress, duration):
+    show = sys.stderr.isatty() if progress is None else progress
+    if not show:
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=duration, unit="s", desc="cablefem run", bar_format="{l_bar}{bar}| {n:.1f}/{total:.1f} s [{elapsed}<{remaining}]")
+
+
+class _Extremes:
+    """Largest and smallest fairlead and anchor tensions per line, with their times, and the
+    network's columns and extremes (``network``: a ``NetworkRows`` or None)."""
+
+    def __init__(self, names, network=None):
+        self.names = names
+        self.table = {n: {} for n in names}
+        self.network = network
+
+    def rows(self, rows):
+        """The tensions.csv rows of ``rows`` (t, forces per line), the extremes updated."""
+        for t, forces in rows:
+            self.update(t, forces)
+        if self.network is None:
+            return [_row(t, forces) for t, forces in rows]
+        extra = self.network.values([t for t, _ in rows], [forces for _, forces in rows])
+        return [_row(t, forces, values) for (t, forces), values in zip(rows, extra)]
+
+    def update(self, t, forces):
+        for name, (fairlead, anchor) in zip(self.names, forces):
+            for key, value in (("fairlead_tension", np.linalg.norm(fairlead)),
+                               ("anchor_tension", np.linalg.norm(anchor))):
+                entry = self.table[name]
+                if f"{key}_max" not in entry or value > entry[f"{key}_max"]:
+                    entry[f"{key}_max"], entry[f"{key}_max_t"] = float(value), float(t)
+                if f"{key}_min" not in entry or value < entry[f"{key}_min"]:
+                    entry[f"{key}_min"], entry[f"{key}_min_t"] = float(value), float(t)
+
+    def as_dict(self):
+        return self.table
