@@ -1,6 +1,8 @@
 """The load catalog (issue 15): for every load in it, the compiled face equals the numpy face
 (residual and tangent to round-off) and the numpy face's tangent equals finite differences; the
-records are laid out by name, and a load the catalog does not know is refused loudly."""
+records and the loads' scratch are laid out by name, a load reads another's scratch only where it
+says so, the line's potential energy is what the catalog's loads give, and a load the catalog does
+not know is refused loudly."""
 
 from dataclasses import replace
 
@@ -13,14 +15,16 @@ from cablefem.loads import catalog
 from cablefem.model.line import Joint, Segment
 from cablefem.loads.current import CurrentProfile
 from cablefem.loads.friction import IsotropicFriction
-from cablefem.model.scene import Contact
+from cablefem.model.scene import Contact, Friction
 from cablefem.fem.system import LineSystem
 
 from test_loads import (assert_tangent_matches_finite_differences, line_state, soil_state, soil_system,
                         system_with_all_loads)
 
-#: every catalog load, and the two that see the current once more in a current varying with depth
-NAMES = [spec.name for spec in catalog.CATALOG] + ["drag+profile", "points+profile", "contact+opening"]
+#: every catalog load, the two that see the current once more in a current varying with depth, and
+#: the contact and its friction with the seabed's damper acting on points moving out too
+NAMES = [spec.name for spec in catalog.CATALOG] + ["drag+profile", "points+profile", "contact+opening",
+                                                   "friction+opening"]
 #: a sheared current over the test line's heights (about -100 m to the surface, the clump near the
 #: seabed and the buoy at the surface both on a sloping piece), bending at four heights
 PROFILE = CurrentProfile.from_arrays([-130.0, -70.0, -30.0, 5.0],
@@ -30,11 +34,12 @@ LAW = IsotropicFriction(0.3, 1.2, 0.05)
 
 
 def one_load_system(name, order):
-    """The soft rope of test_loads with drag, added mass, contact and friction, keeping one load;
-    for the point loads, the rope in two segments with a clump weight at their joint and a buoy at
-    its free fairlead end, half out of the water; the soil, whose points lie below the seabed, on its
-    own line (``test_loads.soil_system``). '+profile': the same load in a sheared current;
-    'contact+opening': the seabed's damper acting on points moving out too (MoorDyn-C's law)."""
+    """The soft rope of test_loads with drag, added mass, contact and friction, keeping one load
+    and the loads whose scratch it reads (friction: the contact's); for the point loads, the rope
+    in two segments with a clump weight at their joint and a buoy at its free fairlead end, half out
+    of the water; the soil, whose points lie below the seabed, on its own line
+    (``test_loads.soil_system``). '+profile': the same load in a sheared current; '+opening': the
+    seabed's damper acting on points moving out too (MoorDyn-C's law)."""
     name, _, variant = name.partition("+")
     profile = variant == "profile"
     system = (soil_system(SEABED, order) if name == "soil"
@@ -47,8 +52,9 @@ def one_load_system(name, order):
                   (2, Joint("buoy", mass=100.0, volume=2.0, CdA=2.0, Ca=0.5)))
         line = replace(line, segments=(half, half), joints=joints, prescribed=(True, False))
         system = LineSystem(line, SEABED, Contact(stiffness=0.0), system.environment)
-    loads = [load for load in system.loads if catalog.spec_of(load).name == name]
-    system.loads = loads[-1:]  # contact: the test's own (the catalog's has no stiffness here)
+    # the last of each: the test's own contact (the catalog's has no stiffness here)
+    system.loads = [[load for load in system.loads if catalog.spec_of(load).name == wanted][-1]
+                    for wanted in catalog.spec(name).reads + (name,)]
     system.loads[0].opening = variant == "opening"
     return system
 
@@ -98,6 +104,40 @@ def test_every_load_has_its_parameters_by_name_in_the_element_record():
         assert spec.reference.name == spec.name  # the numpy face names its catalog entry
 
 
+#: the loads whose energy is a potential, its gradient their static residual (the soil's, a load with
+#: history, is a merit function of its committed anchors: ``Soil.energy``)
+POTENTIALS = [spec.name for spec in catalog.CATALOG if hasattr(spec.reference, "energy") and not spec.history]
+
+
+@pytest.mark.parametrize("name", POTENTIALS)
+def test_the_line_s_energy_is_its_loads_and_its_slope_is_their_static_residual(name, rng):
+    # LineSystem.energy sums the loads' own energies (statics' line search takes Armijo's test on it
+    # with the slope G . d); central differences, h = 1e-5 m, away from the kinks (line_state):
+    # truncation and round-off below 1e-8 of the slope
+    system = one_load_system(name, 2)
+    _, X, _, _ = load_state(system, name, rng)
+    d = rng.standard_normal(X.shape)
+    h = 1e-5
+    slope = (system.energy(X + h * d) - system.energy(X - h * d)) / (2 * h)
+    assert slope == pytest.approx(float(np.sum(system.residual(X) * d)), rel=1e-7)
+
+
+def test_a_load_reading_the_scratch_of_a_load_not_before_it_is_refused():
+    contact = catalog.spec("contact")
+    reordered = [spec for spec in catalog.CATALOG if spec is not contact] + [contact]
+    with pytest.raises(ValueError, match="'friction' reads the scratch of 'contact'"):
+        catalog.Layout(reordered)
+
+
+def test_a_line_without_seabed_contact_gets_no_friction():
+    system = one_load_system("friction", 1)
+    setting = replace(system.setting, friction=Friction(model="isotropic"), dynamic=True)
+    names = [catalog.spec_of(load).name for load in catalog.build_loads(setting)]
+    assert "contact" in names and "friction" in names
+    without = replace(setting, sections={"soil": None})  # a line in soil has no contact
+    assert not {"contact", "friction"} & {catalog.spec_of(load).name for load in catalog.build_loads(without)}
+
+
 def test_a_load_declaring_other_parameters_than_it_gives_is_refused():
     system = one_load_system("drag", 1)
 
@@ -126,8 +166,9 @@ def test_the_point_loops_call_only_the_lines_loads_and_the_others_would_add_noth
     state, X, V, A = load_state(system, name, rng)
     fused = FusedEvaluator.for_system(system, system.props["mass"])
     layout, pts = catalog.layout(), fused.points
-    np.testing.assert_array_equal(pts.full_loads, [spec.name == name for spec in layout.full])
-    np.testing.assert_array_equal(pts.reduced_loads, [spec.name == name for spec in layout.reduced])
+    names = {name, *catalog.spec(name).reads}
+    np.testing.assert_array_equal(pts.full_loads, [spec.name in names for spec in layout.full])
+    np.testing.assert_array_equal(pts.reduced_loads, [spec.name in names for spec in layout.reduced])
     rows, band = (x.copy() for x in fused.evaluate(X, V, A, 150.0, 2.2e4))
     # every kernel called, as before the masks: a load the line has not returns at its flag
     fused.points = pts._replace(full_loads=np.ones_like(pts.full_loads), reduced_loads=np.ones_like(pts.reduced_loads))
@@ -141,15 +182,16 @@ def test_an_opening_damper_pulls_points_lifting_off_and_friction_reads_its_magni
     # MoorDyn-C's law (``damping_when_opening``): on a point in the seabed moving out, the damper's
     # -c v_n d_P pulls it down; the friction then reads N = |f_n| (MoorDyn-C's |B_z|): the same
     # friction force as a point pressed down by as much
-    system = one_load_system("contact+opening", 1)
-    contact = system.loads[0]
-    state, X, V, A = load_state(system, "contact", rng)
+    system = one_load_system("friction+opening", 1)
+    contact, law = system.loads[0], system.loads[1].law
+    state, X, V, A = load_state(system, "friction", rng)
     V[:, 2] += 0.5  # lifting: every point in the seabed opens, the slowest by ~0.4 m/s
     state = system.state(X, V, A)
     n = contact.seabed.project(state.r.reshape(3, -1).T).direction.T.reshape(state.r.shape)
     gap = contact.seabed.gap_only(state.r.reshape(3, -1).T).reshape(state.r.shape[1:])
     vn = np.einsum("ceq,ceq->eq", state.v, n)
     on = contact.evaluate(state, jacobian=False).force
+    friction = system.loads[1].evaluate(state, jacobian=False).force  # on the opening contact's force
     contact.opening = False
     off = contact.evaluate(state, jacobian=False).force
     opening = (gap < 0.0) & (vn > 0.0)
@@ -161,9 +203,7 @@ def test_an_opening_damper_pulls_points_lifting_off_and_friction_reads_its_magni
     pulled = opening & (pressure < 0.0)
     assert pulled.sum() >= 1
     slip = state.v - vn * n
-    friction = on - pressure * n
     # the friction opposes the slip with the magnitude of |f_n| times the law's coefficient
     assert np.all(np.einsum("ceq,ceq->eq", friction, slip)[pulled] < 0.0)
-    law = contact.friction
     expected = law.evaluate(slip, np.abs(pressure), None)[0]
     np.testing.assert_allclose(friction[:, pulled], expected[:, pulled], rtol=1e-9)

@@ -20,6 +20,15 @@ def test_a_uniform_force_from_its_scene_table_is_extra_weight_in_statics(measure
     assert measured["uniform_static_error"] < 1e-6
 
 
+def test_a_registered_conservative_load_s_energy_reaches_statics_line_search(measured):
+    # LineSystem.energy sums the catalog loads' energies, the toy's -f . r with them: the slope of
+    # the line search's merit along a direction is the residual's G . d, and what the toy adds to
+    # the one is what it adds to the other (central differences, h = 1e-4 m; round-off of the
+    # ~1e9 J energy over h ~ 1e-8 of what the toy adds; without its energy the error would be 1)
+    assert measured["uniform_energy_slope_error"] < 1e-6
+    assert measured["uniform_energy_added_slope_error"] < 1e-5
+
+
 def test_a_registered_load_runs_in_the_compiled_path_equal_to_its_numpy_face(measured):
     assert measured["uniform_compiled_steps"]
     assert measured["uniform_faces_difference"] < 1e-12

@@ -15,11 +15,12 @@ import pytest
 from cablefem import LineType
 from cablefem.errors import InputError
 from cablefem.geometry import Plane, Projection, Seabed
-from cablefem.loads import State
+from cablefem.loads import State, Terms, add
 from cablefem.loads.added_mass import AddedMass
 from cablefem.loads.contact import SeabedContact
 from cablefem.loads.drag import Drag, tangential_drag_from_moordyn
-from cablefem.loads.friction import AnisotropicFriction, IsotropicFriction, friction_law, saturation
+from cablefem.loads.friction import (AnisotropicFriction, IsotropicFriction, SeabedFriction, friction_law,
+                                     saturation)
 from cablefem.model.scene import Contact, Environment, Friction
 from cablefem.fem.system import LineSystem
 from cablefem.loads.contact import contact_damping
@@ -143,6 +144,22 @@ def assert_block(block, fd, tolerance):
     np.testing.assert_allclose(block, fd, rtol=0, atol=tolerance * scale)
 
 
+class Rubbing:
+    """The seabed contact and its friction (``law``) evaluated at the same points in catalog order,
+    their terms summed as ``LineSystem.evaluate`` sums a line's loads: friction reads the contact's
+    normal force (``State.handed``)."""
+
+    def __init__(self, seabed, stiffness, damping, law):
+        self.seabed = seabed
+        self.contact = SeabedContact(seabed, stiffness, damping)
+        self.friction = SeabedFriction(law)
+
+    def evaluate(self, state, jacobian=True):
+        first = self.contact.evaluate(state, jacobian)
+        second = self.friction.evaluate(state, jacobian)
+        return Terms(**{name: add(getattr(first, name), getattr(second, name)) for name in Terms.__dataclass_fields__})
+
+
 def drag_and_added_mass(nel, current=(0.3, -0.2, 0.05)):
     d = np.full(nel, 0.3539)
     drag = Drag(d, np.full(nel, 2.5), np.full(nel, 0.5), RHO, current)
@@ -171,7 +188,7 @@ def test_drag_and_added_mass_jacobians_match_finite_differences(rng):
 @pytest.mark.parametrize("seabed", seabeds())
 def test_contact_with_friction_jacobian_matches_finite_differences(rng, seabed, law):
     nel = 6
-    contact = SeabedContact(seabed, np.full(nel, 3e5 * 0.3539), np.full(nel, 2e4), friction=law)
+    contact = Rubbing(seabed, np.full(nel, 3e5 * 0.3539), np.full(nel, 2e4), law)
     state, = away_from_kinks(lambda: (point_state(rng, seabed, law, nel=nel),), seabed, law)
     terms = contact.evaluate(state)
     # piecewise smooth; on each piece the FD error, O(h^2 F''') plus round-off ~ 1e-16 k |r| / h
@@ -229,18 +246,17 @@ def test_saturation_is_kinetic_beyond_threshold_and_a_linear_ramp_below():
 
 
 def slope_contact(law, damping=0.0):
-    """A 20 deg slope rising towards azimuth 0.7, ground stiffness 1e5 N/m^2 per unit length."""
+    """A 20 deg slope rising towards azimuth 0.7, ground stiffness 1e5 N/m^2 per unit length: the
+    seabed, and the contact with friction by ``law`` on it (``Rubbing``)."""
     seabed = Plane.from_slope([0.0, 0.0, -50.0], np.radians(20.0), azimuth=0.7)
-    return seabed, SeabedContact(seabed, [1e5], [damping], friction=law)
+    return seabed, Rubbing(seabed, [1e5], [damping], law)
 
 
-def friction_force(contact, r, dr, v):
-    """Friction at single points (n, 3): the contact force minus the frictionless one, (n, 3)."""
+def friction_force(rubbing, r, dr, v):
+    """Friction at single points (n, 3): the friction load's force on the contact's normal force, (n, 3)."""
     state = State(r.T[:, :, None], dr.T[:, :, None], v.T[:, :, None])
-    with_friction = contact.evaluate(state, jacobian=False).force
-    without = SeabedContact(contact.seabed, contact.stiffness[:, 0], contact.damping[:, 0])
-    without = without.evaluate(state, jacobian=False).force
-    return (with_friction - without)[:, :, 0].T
+    rubbing.contact.evaluate(state, jacobian=False)
+    return rubbing.friction.evaluate(state, jacobian=False).force[:, :, 0].T
 
 
 def test_isotropic_friction_is_mu_n_beyond_vc_and_ramps_linearly_below():
@@ -294,8 +310,9 @@ def test_anisotropic_friction_on_a_line_normal_to_the_seabed_is_all_transverse()
     n = seabed.normal
     state = State((seabed.point - 0.25 * n)[:, None, None], (1.02 * n)[:, None, None],
                   np.array([1.0, 0.0, 0.0])[:, None, None])
-    terms = contact.evaluate(state)  # q is undefined: taken as 0, with zero derivatives
-    friction = terms.force[:, 0, 0] - 1e5 * 0.25 * n
+    contact.contact.evaluate(state)
+    terms = contact.friction.evaluate(state)  # q is undefined: taken as 0, with zero derivatives
+    friction = terms.force[:, 0, 0]
     v_plane = np.array([1.0, 0, 0]) - n[0] * n
     np.testing.assert_allclose(friction, -1.2 * 1e5 * 0.25 * v_plane / np.linalg.norm(v_plane), rtol=1e-12)
     assert np.all(np.isfinite(terms.force_r)) and np.all(terms.force_dr == 0.0)
@@ -337,11 +354,11 @@ def system_with_all_loads(seabed, law, order, profile=None):
     env = Environment(current=(0.2, 0.1, 0.0), current_profile=profile)
     nel = line.segments[0].elements
     props = dict(diameter=np.full(nel, ROPE.diameter), mass=np.full(nel, ROPE.mass))
-    contact = SeabedContact(seabed, 3e5 * props["diameter"], contact_damping(Contact(), props), friction=law)
+    contact = SeabedContact(seabed, 3e5 * props["diameter"], contact_damping(Contact(), props))
     loads = (Drag(props["diameter"], np.full(nel, 2.0), np.full(nel, 0.4), env.water_density, env.current,
                   profile=profile),
              AddedMass(props["diameter"], np.full(nel, 1.0), np.full(nel, 0.5), env.water_density),
-             contact)
+             contact, SeabedFriction(law))
     return LineSystem(line, seabed, Contact(stiffness=0.0), env, extra_loads=loads)
 
 

@@ -4,7 +4,8 @@ module (here, one file for both) with its numpy face, its compiled face and its 
 process (the compiled kernels are built for one catalog) and asserts what it prints.
 
 - ``UniformForce``: a force per unit length, the same everywhere, from a scene table
-  ``[uniform_force] force = [x, y, z]`` (the recipe's toy).
+  ``[uniform_force] force = [x, y, z]`` (the recipe's toy); conservative, with its potential energy
+  -f . r per unit length, which statics' line search sums with the other loads'.
 - ``PlasticSpring``: each point tied to a rest position by an elastic-perfectly-plastic spring
   (stiffness k [N/m^2], yield force F_y [N/m], radial return), the rest position its history: the
   test of per-point history (a hysteresis loop with a closed form).
@@ -32,12 +33,16 @@ class UniformForce:
     def evaluate(self, state, jacobian=True):
         return Terms(force=np.broadcast_to(self.force.reshape(3, 1, 1), state.r.shape).copy())
 
+    def energy(self, state):
+        """Potential energy density -f . r [J/m] (nel, nq)."""
+        return -np.einsum("c,ceq->eq", self.force, state.r)
+
     def params(self):
         return {"force": np.tile(self.force, (self.nel, 1))}
 
 
 @njit(cache=True, _nrt=False)
-def uniform_point(ctx, p, old, new, state, hold, out, M, u):
+def uniform_point(ctx, p, old, new, state, hold, out):
     q = p.uniform
     if q.active:
         for i in range(3):
@@ -87,11 +92,11 @@ class PlasticSpring:
 
 
 @njit(cache=True, _nrt=False)
-def plastic_point(ctx, p, old, new, state, hold, out, M, u):
+def plastic_point(ctx, p, old, new, state, hold, out):
     q = p.plastic
     if not q.active:
         return
-    trial = u[0]
+    trial = ctx.plastic.trial
     for i in range(3):
         trial[i] = q.k * (ctx.r[i] - old.plastic.rest[i])
     size = np.sqrt(trial[0] ** 2 + trial[1] ** 2 + trial[2] ** 2)
@@ -117,7 +122,7 @@ def build_plastic(setting):
 
 
 PLASTIC = LoadSpec("plastic", "full", (("k", "f8"), ("yield_force", "f8")), plastic_point, PlasticSpring,
-                   history=(("rest", "f8", (3,)),), scratch=(0, 1), frames=("rest",), build=build_plastic,
+                   history=(("rest", "f8", (3,)),), scratch=(("trial", "f8", (3,)),), frames=("rest",), build=build_plastic,
                    section="plastic_spring", keys={"stiffness": v.positive, "yield_force": v.positive})
 
 

@@ -102,11 +102,38 @@ def _uniform(scene):
     integ = BDF2(system, X0, boundary_path(scene, line), dt=0.05)
     static = np.linalg.norm(integ.reactions()[0])
     moved = np.linalg.norm(integ.march(np.arange(1, 41) * 0.05)[-1, 0])
+    slope, added = _energy_slope(scene, line, X0, rng)
     return {"uniform_in_catalog_loads": [type(load).__name__ for load in system.loads],
+            "uniform_energy_slope_error": slope, "uniform_energy_added_slope_error": added,
             "uniform_static_error": abs(reports[0].fairlead_tension / closed.fairlead_tension - 1.0),
             "uniform_faces_difference": float(np.abs(rows - reference).max() / np.abs(reference).max()),
             "uniform_compiled_steps": integ.marcher is not None,
             "uniform_held_still_change": abs(moved / static - 1.0)}
+
+
+def _energy_slope(scene, line, X0, rng):
+    """The line search's merit with the uniform force (statics' ``newton`` takes Armijo's test on
+    ``LineSystem.energy`` with slope G . d): along a direction d at a state off equilibrium, the
+    relative error of the energy's central difference against G . d, and of what the scene's
+    ``[uniform_force]`` adds to it (the slopes with it less those without) against what it adds
+    to G . d."""
+    from dataclasses import replace
+
+    from cablefem.fem.system import build_system
+
+    others = {key: value for key, value in scene.load_settings.items() if key != "uniform_force"}
+    systems = [build_system(scene, line, dynamic=False),
+               build_system(replace(scene, load_settings=others), line, dynamic=False)]
+    fixed = systems[0].fixed_rows
+    X = X0 + 0.5 * rng.standard_normal(X0.shape)
+    X[fixed] = X0[fixed]
+    d = rng.standard_normal(X0.shape)
+    d[fixed] = 0.0
+    h = 1e-4
+    slopes = [(system.energy(X + h * d) - system.energy(X - h * d)) / (2 * h) for system in systems]
+    expected = [float(np.sum(system.residual(X) * d)) for system in systems]
+    return (abs(slopes[0] / expected[0] - 1.0),
+            abs((slopes[0] - slopes[1]) / (expected[0] - expected[1]) - 1.0))
 
 
 def _plastic(scene, folder):

@@ -5,13 +5,15 @@ For the loads of ``cablefem.loads.catalog`` and the consistent mass, ``assemble`
 residual M A + G and the tangent g_x (K + v_x C + a_x (M + M_a)) in one loop over elements and
 quadrature points, straight into LAPACK's banded storage with the unknowns ordered along the line.
 At each point it fills a context record (``CONTEXT``: position, its derivatives, velocity,
-acceleration, the unit tangent, the seabed's projection, the step's factors) and calls the loads
-of the point's rule that the line has, in catalog order (``full_point``, ``reduced_point``: a loop
+acceleration, the unit tangent, the seabed's projection, the step's factors, and each load's named
+scratch) and calls the loads of the point's rule that the line has, in catalog order (``full_point``, ``reduced_point``: a loop
 over the catalog's tuple of point kernels, which numba unrolls into direct calls, each behind the
 line's flag for it: a catalog load a scene does not use costs a flag test, not a call). Each load reads its parameters by
-name from the element's record (``p.drag.normal``), writes its branch state to the point's state
-record, reads its holds and its committed history, writes its trial history, and adds its force
-and Jacobian blocks to the output record (``OUT``: f, A = -(f_r + v_x f_v + a_x f_a),
+name from the element's record (``p.drag.normal``), works in its own scratch in the context
+(``ctx.drag.w``; another load's only where its spec ``reads`` it: friction reads the contact's
+``ctx.contact.pressure``), writes its branch state to the point's state record, reads its holds
+and its committed history, writes its trial history, and adds its force and Jacobian blocks to
+the output record (``OUT``: f, A = -(f_r + v_x f_v + a_x f_a),
 B = -f_dr at full points; the flux N and D = N_dr + v_x N_dv at reduced ones).
 
 The kernels run with numba's reference counting off (``_nrt=False``: they allocate nothing; with
@@ -43,12 +45,16 @@ FULL_RULES, REDUCED_RULES = LAYOUT.full_rules, LAYOUT.reduced_rules
 #: (P, the normal projector I - t t^T, only when a tangent is assembled); which loads of each rule the
 #: line has (``Points.full_loads``, ``reduced_loads``: read from the context, not passed, because
 #: an argument more per point cost more instructions than the calls it saves)
-CONTEXT = np.dtype([("r", "f8", (3,)), ("dr", "f8", (3,)), ("v", "f8", (3,)), ("dv", "f8", (3,)),
-                    ("a", "f8", (3,)), ("t", "f8", (3,)), ("stretch", "f8"), ("P", "f8", (3, 3)),
-                    ("gap", "f8"), ("n", "f8", (3,)), ("grad_gap", "f8", (3,)), ("dn", "f8", (3, 3)),
-                    ("curved", "?"), ("v_x", "f8"), ("a_x", "f8"), ("jac", "?"), ("held", "?"),
-                    ("full_loads", "u1", (len(FULL_KERNELS),)), ("reduced_loads", "u1", (len(REDUCED_KERNELS),))],
-                   align=True)
+POINT = [("r", "f8", (3,)), ("dr", "f8", (3,)), ("v", "f8", (3,)), ("dv", "f8", (3,)),
+         ("a", "f8", (3,)), ("t", "f8", (3,)), ("stretch", "f8"), ("P", "f8", (3, 3)),
+         ("gap", "f8"), ("n", "f8", (3,)), ("grad_gap", "f8", (3,)), ("dn", "f8", (3, 3)),
+         ("curved", "?"), ("v_x", "f8"), ("a_x", "f8"), ("jac", "?"), ("held", "?"),
+         ("full_loads", "u1", (len(FULL_KERNELS),)), ("reduced_loads", "u1", (len(REDUCED_KERNELS),))]
+_clash = {name for name, _ in LAYOUT.scratch} & {entry[0] for entry in POINT}
+if _clash:
+    raise ValueError(f"load name(s) {sorted(_clash)} clash with the point context's own fields")
+#: the point context: ``POINT`` and, under each load's name, its scratch (``LoadSpec.scratch``)
+CONTEXT = np.dtype(POINT + list(LAYOUT.scratch), align=True)
 #: what a point kernel adds to
 OUT = np.dtype([("f", "f8", (3,)), ("A", "f8", (3, 3)), ("B", "f8", (3, 3)), ("N", "f8", (3,)),
                 ("D", "f8", (3, 3))], align=True)
@@ -67,9 +73,9 @@ Bed = namedtuple("Bed", "plane gap normal grad_gap dnormal")
 #: order: the point loops call only those, so that a load a scene does not use costs no call)
 Points = namedtuple("Points", "params full_old full_new full_state full_hold "
                               "reduced_old reduced_new reduced_state reduced_hold nodes full_loads reduced_loads")
-#: scratch: a context and an output record, the loads' matrices (k, 3, 3) and vectors (k, 3), an
-#: element's rows (nloc, 3) and matrix (nloc, 3, nloc, 3)
-Work = namedtuple("Work", "ctx out M u Re Ke")
+#: scratch: a context (the loads' scratch in it) and an output record, an element's rows (nloc, 3)
+#: and matrix (nloc, 3, nloc, 3)
+Work = namedtuple("Work", "ctx out Re Ke")
 
 
 def records(dtype, shape):
@@ -96,12 +102,11 @@ def active(params, specs):
 
 def work(nloc):
     """Fresh scratch (``Work``) for elements of nloc DOFs."""
-    return Work(records(CONTEXT, 1), records(OUT, 1), np.zeros((LAYOUT.matrices, 3, 3)),
-                np.zeros((LAYOUT.vectors, 3)), np.zeros((nloc, 3)), np.zeros((nloc, 3, nloc, 3)))
+    return Work(records(CONTEXT, 1), records(OUT, 1), np.zeros((nloc, 3)), np.zeros((nloc, 3, nloc, 3)))
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def full_point(ctx, p, old, new, state, hold, out, M, u):
+def full_point(ctx, p, old, new, state, hold, out):
     """The full-point loads of the catalog the line has (``ctx.full_loads``), in order, into
     ``out`` (f, A, B zeroed first)."""
     out.f[:] = 0.0
@@ -111,12 +116,12 @@ def full_point(ctx, p, old, new, state, hold, out, M, u):
     k = 0
     for kernel in literal_unroll(FULL_KERNELS):
         if ctx.full_loads[k]:
-            kernel(ctx, p, old, new, state, hold, out, M, u)
+            kernel(ctx, p, old, new, state, hold, out)
         k += 1
 
 
 @njit(cache=True, _nrt=False)
-def reduced_point(ctx, p, old, new, state, hold, out, M, u):
+def reduced_point(ctx, p, old, new, state, hold, out):
     """The reduced-point loads of the catalog the line has (``ctx.reduced_loads``), in order, into
     ``out`` (N, D zeroed first)."""
     out.N[:] = 0.0
@@ -125,18 +130,18 @@ def reduced_point(ctx, p, old, new, state, hold, out, M, u):
     k = 0
     for kernel in literal_unroll(REDUCED_KERNELS):
         if ctx.reduced_loads[k]:
-            kernel(ctx, p, old, new, state, hold, out, M, u)
+            kernel(ctx, p, old, new, state, hold, out)
         k += 1
 
 
 @njit(cache=True, _nrt=False)
-def node_point(ctx, p, out, M, u):
+def node_point(ctx, p, out):
     """Every node load of the catalog, in order, into ``out`` (f, A zeroed first)."""
     out.f[:] = 0.0
     if ctx.jac:
         out.A[:, :] = 0.0
     for kernel in literal_unroll(NODE_KERNELS):
-        kernel(ctx, p, p, p, p, p, out, M, u)
+        kernel(ctx, p, p, p, p, p, out)
 
 
 @njit(cache=True, _nrt=False)
@@ -144,7 +149,7 @@ def assemble_nodes(mesh, pts, work, state, factors, jac, rows, band):
     """The node loads at their vertices (``mesh.nodes``): -f added to the rows (N, 3) and, with
     ``jac``, the 3 x 3 block A to the band's diagonal (unknown vertices only)."""
     X, V, Acc = state
-    ctx, out, M, u = work.ctx[0], work.out[0], work.M, work.u
+    ctx, out = work.ctx[0], work.out[0]
     ctx.v_x, ctx.a_x = factors
     ctx.jac = jac
     kl, ku = mesh.kl, mesh.ku
@@ -152,7 +157,7 @@ def assemble_nodes(mesh, pts, work, state, factors, jac, rows, band):
         i = mesh.nodes[k]
         for a in range(3):
             ctx.r[a], ctx.v[a], ctx.a[a] = X[i, a], V[i, a], Acc[i, a]
-        node_point(ctx, pts.nodes[k], out, M, u)
+        node_point(ctx, pts.nodes[k], out)
         for a in range(3):
             rows[i, a] -= out.f[a]
         pi = mesh.position[i]
@@ -224,7 +229,7 @@ def assemble(mesh, bed, pts, work, state, factors, jac, held, rows, band, elemen
     each (N, 3); factors: (v_x, a_x); held: the loads keep the branches the hold records hold
     (Newton's corrections). Kernel, so over 12 arguments' worth of data comes in named tuples."""
     X, V, Acc = state
-    ctx, out, M, u, Re, Ke = work.ctx[0], work.out[0], work.M, work.u, work.Re, work.Ke
+    ctx, out, Re, Ke = work.ctx[0], work.out[0], work.Re, work.Ke
     ctx.v_x, ctx.a_x = factors
     ctx.jac, ctx.held = jac, held
     for k in range(pts.full_loads.shape[0]):
@@ -242,12 +247,12 @@ def assemble(mesh, bed, pts, work, state, factors, jac, held, rows, band, elemen
             _kinematics(ctx, mesh, X, V, Acc, e, g)
             _seabed(ctx, bed, e, g)
             full_point(ctx, p, pts.full_old[e, g], pts.full_new[e, g], pts.full_state[e, g],
-                       pts.full_hold[e, g], out, M, u)
+                       pts.full_hold[e, g], out)
             _add_full(Re, Ke, mesh, out, ctx, e, g, jac)
         for g in range(nr):
             _reduced_kinematics(ctx, mesh, X, V, e, g)
             reduced_point(ctx, p, pts.reduced_old[e, g], pts.reduced_new[e, g], pts.reduced_state[e, g],
-                          pts.reduced_hold[e, g], out, M, u)
+                          pts.reduced_hold[e, g], out)
             _add_reduced(Re, Ke, mesh, out, e, g, jac)
         _scatter(Re, Ke, mesh, e, jac, rows, band)
 

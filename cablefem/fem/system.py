@@ -254,21 +254,21 @@ class LineSystem:
         return forms.load_vector.assemble(basis, force=force, flux=flux).reshape(-1, 3)
 
     def energy(self, X):
-        """Total potential energy [J] of the static loads at X (N, 3): strain energy, weight and
-        the seabed spring k min(d_G, 0)^2 / 2, whose gradient is the static residual (exactly on
-        planes and grids, to the projection's own accuracy on vertex-normal meshes); with soil,
-        its springs' merit function (``Soil.energy``: no potential, the soil keeps history)."""
+        """Total potential energy [J] at X (N, 3) of the loads that have one (their numpy face's
+        ``energy(state)``, ``cablefem.loads.LoadSpec``: strain energy, weight, the seabed spring,
+        the joints; with soil, its springs' merit function), whose gradient is the static residual:
+        the merit of statics' line search."""
         state = self.state(X)
-        total = np.sum(self.tension.energy(state.reduced) * self.fem.reduced.dx)
-        total += np.sum(self.weight.energy(state) * self.fem.full.dx)
-        if self.has("contact"):
-            gap = self.seabed.gap_only(state.r.reshape(3, -1).T).reshape(self.fem.full.s.shape)
-            total += np.sum(0.5 * self.contact.stiffness * np.minimum(gap, 0.0) ** 2 * self.fem.full.dx)
-        if self.has("soil"):
-            total += np.sum(self.load("soil").energy(state) * self.fem.full.dx)
+        total = 0.0
         for load in self.loads:
-            if getattr(load, "rule", "full") == "node":
-                total += load.energy(X[load.vertices, 2])
+            energy = getattr(load, "energy", None)
+            if energy is None:
+                continue
+            rule = getattr(load, "rule", "full")
+            if rule == "node":
+                total += np.sum(energy(state.nodes))
+            else:
+                total += np.sum(energy(state.reduced if rule == "reduced" else state) * self._rule(rule).dx)
         return float(total)
 
     def residual(self, X, V=None, A=None, t=0.0):

@@ -23,6 +23,9 @@ class State:
     old, new: the history of the points (record arrays (nel, nq) of the catalog's history
     dtype, ``cablefem.loads.catalog``): a load with history reads its committed values from
     ``old[name]`` and writes its trial values to ``new[name]``.
+    handed: what a load hands to the loads after it at these points, under its name (the numpy
+    twin of its scratch in the compiled point context; ``LoadSpec.reads``): the contact's
+    ``NormalForce``, which friction reads.
     """
 
     r: np.ndarray
@@ -35,6 +38,7 @@ class State:
     nodes: "State | None" = None  # at the vertices of the line's joints (3, k)
     old: np.ndarray | None = None
     new: np.ndarray | None = None
+    handed: dict = field(default_factory=dict)
 
 
 @dataclass
@@ -94,18 +98,25 @@ def add(a, b):
 
 @dataclass(frozen=True)
 class LoadSpec:
-    """How a load presents itself to the compiled path.
+    """How a load presents itself to the compiled path and to the rest of the code.
 
     name: its key in every record (``p.<name>.<field>``); rule: "full" or "reduced" (the
     quadrature its points use, ``cablefem.fem.discretisation.LineFEM``) or "node" (a concentrated force at
     vertices, parameters per vertex: ``cablefem.loads.points``); params: numpy dtype fields of its
     per-element (per-vertex) parameters (an ``active`` flag is added); kernel: the compiled point function
-    ``kernel(ctx, p, old, new, state, hold, out, M, u)`` that adds the load at one point (see
+    ``kernel(ctx, p, old, new, state, hold, out)`` that adds the load at one point (see
     ``cablefem.compiled.kernels``); state / hold / history: dtype fields per point (written each
     evaluation / read / read from ``old`` and written to ``new``, committed on accepted steps);
     hold_rule: compiled ``rule(base, state, hold, p, again) -> (held, changed)`` choosing the
-    holds after a rejected Newton step, or None; scratch: (3 x 3 matrices, 3-vectors) the kernel
-    uses; reference: the numpy face's class; frames: history fields written to VTK frames;
+    holds after a rejected Newton step, or None; scratch: dtype fields of the kernel's working
+    values at a point, laid in the point context under its name (``ctx.<name>.<field>``): a kernel
+    writes only its own scratch, and reads another load's only where it names that load in
+    ``reads`` (what that load hands on, documented at its scratch); reads: the loads of the same
+    rule, earlier in the catalog, whose scratch it reads at a point (friction reads the contact's
+    normal force): it is built only for a line that has them; reference: the numpy face's class,
+    whose optional ``energy(state)`` is the load's potential energy [J/m] per point (nel, nq) (a
+    node load's [J] per vertex (k,)), summed by ``LineSystem.energy`` for statics' line search;
+    frames: history fields written to VTK frames;
     build: ``build(setting) -> load or None``, the load a line of a scene gets
     (``cablefem.fem.system.Setting``; None: the scene does not need it); section and keys: the scene
     table the load reads (``[section]`` in TOML) and its keys with their converters
@@ -120,7 +131,8 @@ class LoadSpec:
     hold: tuple = ()
     history: tuple = ()
     hold_rule: object = None
-    scratch: tuple = (0, 0)
+    scratch: tuple = ()
+    reads: tuple = ()
     frames: tuple = field(default=())
     build: object = None
     section: str | None = None

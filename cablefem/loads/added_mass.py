@@ -60,7 +60,7 @@ class AddedMass:
 
 
 @njit(cache=True, _nrt=False)
-def added_mass_point(ctx, p, old, new, state, hold, out, M, u):
+def added_mass_point(ctx, p, old, new, state, hold, out):
     """The compiled face: added mass, normal and tangential, at one full point (see
     ``cablefem.compiled.kernels``; ``ctx.P``, the normal projector, is set when a tangent is)."""
     m = p.added_mass
@@ -69,7 +69,7 @@ def added_mass_point(ctx, p, old, new, state, hold, out, M, u):
         return
     acc, t, P, stretch, a_x = ctx.a, ctx.t, ctx.P, ctx.stretch, ctx.a_x
     f, Ab, Bb = out.f, out.A, out.B
-    per = u[0]
+    per = ctx.added_mass.per
     along = dot(acc, t)
     diff = tangential - normal
     for i in range(3):
@@ -93,4 +93,4 @@ def build(setting):
 
 
 SPEC = LoadSpec("added_mass", "full", (("normal", "f8"), ("tangential", "f8")), added_mass_point, AddedMass,
-                scratch=(0, 1), build=build)
+                scratch=(("per", "f8", (3,)),), build=build)

@@ -6,10 +6,12 @@ Each load lives in one module with its two faces: the numpy reference (a class w
 point kernel (numba), and describes itself in a ``LoadSpec``: its name, the quadrature rule it is
 evaluated at, the parameters its kernel reads per element, the branch state it writes per point
 and the branch holds it reads (Newton's corrections, ``cablefem.dynamics.policy``), its history per point
-(committed on accepted steps), and its scratch. The system (``cablefem.fem.system``), the compiled
+(committed on accepted steps), its scratch (named working values at a point, in the point context)
+and the loads whose scratch it reads. The system (``cablefem.fem.system``), the compiled
 evaluation (``cablefem.compiled.kernels``) and the compiled steps all build their load set, parameter
 records, per-point records and scratch from this list by name: a kernel reads ``p.drag.normal``
-from the element's record, never a column number.
+from the element's record and ``ctx.contact.pressure`` from the point context, never a column or
+slot number.
 
 ``CATALOG`` order is the order the loads add their forces at a point (the compiled and the
 reference faces sum in the same order).
@@ -25,9 +27,10 @@ RULES = ("full", "reduced", "node")
 
 
 def _default():
-    from cablefem.loads import added_mass, contact, drag, gravity, points, soil, tension
+    from cablefem.loads import added_mass, contact, drag, friction, gravity, points, soil, tension
 
-    return [tension.SPEC, gravity.SPEC, contact.SPEC, soil.SPEC, drag.SPEC, added_mass.SPEC, points.SPEC]
+    return [tension.SPEC, gravity.SPEC, contact.SPEC, friction.SPEC, soil.SPEC, drag.SPEC, added_mass.SPEC,
+            points.SPEC]
 
 
 CATALOG = _default()
@@ -70,15 +73,17 @@ def spec_of(load):
 
 def build_loads(setting):
     """The loads a line of a scene gets, in catalog order: every spec's ``build(setting)`` that
-    gives one (``setting.keys`` is the scene's table of the spec's section, or None)."""
-    loads = []
+    gives one (``setting.keys`` is the scene's table of the spec's section, or None), unless the
+    line lacks a load whose scratch it reads (``LoadSpec.reads``: no contact, no friction)."""
+    loads, built = [], set()
     for entry in CATALOG:
-        if entry.build is None:
+        if entry.build is None or not built.issuperset(entry.reads):
             continue
         keys = setting.sections.get(entry.section) if entry.section else None
         load = entry.build(setting.with_keys(keys))
         if load is not None:
             loads.append(load)
+            built.add(entry.name)
     return loads
 
 
@@ -98,12 +103,16 @@ class Layout:
 
     def __init__(self, catalog):
         self.specs = tuple(catalog)
-        for s in self.specs:
+        for k, s in enumerate(self.specs):
             if s.rule not in RULES:
                 raise ValueError(f"load '{s.name}': rule must be one of {', '.join(RULES)}, got {s.rule!r}")
             if s.rule == "node" and (s.state or s.hold or s.history):
                 raise ValueError(f"load '{s.name}': a node load has parameters only (no branch state, "
                                  "holds or history yet)")
+            for name in s.reads:
+                if not any(e.name == name and e.rule == s.rule and e.scratch for e in self.specs[:k]):
+                    raise ValueError(f"load '{s.name}' reads the scratch of '{name}', which must be a load "
+                                     f"of rule '{s.rule}' with scratch, earlier in the catalog")
         self.params = _record((s.name, (("active", "?"),) + tuple(s.params)) for s in self.specs if s.rule != "node")
         self.node = tuple(s for s in self.specs if s.rule == "node")
         self.node_params = _record((s.name, (("active", "?"),) + tuple(s.params)) for s in self.node)
@@ -117,8 +126,8 @@ class Layout:
         self.reduced_kernels = tuple(s.kernel for s in self.reduced)
         self.full_rules = tuple(s.hold_rule for s in self.full if s.hold_rule is not None)
         self.reduced_rules = tuple(s.hold_rule for s in self.reduced if s.hold_rule is not None)
-        self.matrices = max([s.scratch[0] for s in self.specs] + [1])
-        self.vectors = max([s.scratch[1] for s in self.specs] + [1])
+        #: the loads' scratch, one named record each (``ctx.<name>`` in ``cablefem.compiled.kernels``)
+        self.scratch = tuple((s.name, np.dtype(list(s.scratch), align=True)) for s in self.specs if s.scratch)
         self.has_history = any(s.history for s in self.specs)
 
 

@@ -116,7 +116,7 @@ class Drag:
 
 
 @njit(cache=True, _nrt=False)
-def drag_point(ctx, p, old, new, state, hold, out, M, u):
+def drag_point(ctx, p, old, new, state, hold, out):
     """The compiled face: Morison drag on the velocity relative to the current at one full point
     (see ``cablefem.compiled.kernels``; ``ctx.P``, the normal projector, is set when a tangent is)."""
     d = p.drag
@@ -125,7 +125,8 @@ def drag_point(ctx, p, old, new, state, hold, out, M, u):
         return
     v, t, P, stretch, v_x = ctx.v, ctx.t, ctx.P, ctx.stretch, ctx.v_x
     f, Ab, Bb = out.f, out.A, out.B
-    w, un, per, current, slope = u[0], u[1], u[2], u[3], u[4]
+    s = ctx.drag
+    w, un, per, current, slope = s.w, s.un, s.per, s.current, s.slope
     if d.profile_n == 0:
         for i in range(3):
             current[i] = d.current[i]
@@ -167,4 +168,8 @@ def build(setting):
 
 
 SPEC = LoadSpec("drag", "full", (("normal", "f8"), ("tangential", "f8"), ("current", "f8", (3,))) + PROFILE_FIELDS,
-                drag_point, Drag, scratch=(0, 5), build=build)
+                drag_point, Drag, build=build,
+                # the relative velocity u - v, its part normal to the line, the force per stretched
+                # length, the current at the point and its slope dU/dz
+                scratch=(("w", "f8", (3,)), ("un", "f8", (3,)), ("per", "f8", (3,)), ("current", "f8", (3,)),
+                         ("slope", "f8", (3,))))

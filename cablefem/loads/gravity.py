@@ -94,7 +94,7 @@ def submerged_point(z, diameter):
 
 
 @njit(cache=True, _nrt=False)
-def weight_point(ctx, p, old, new, state, hold, out, M, u):
+def weight_point(ctx, p, old, new, state, hold, out):
     """The compiled face: weight and buoyancy at one point (see ``cablefem.compiled.kernels``)."""
     w = p.weight
     if not w.active:

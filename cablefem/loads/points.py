@@ -102,9 +102,11 @@ class PointLoads:
                 terms.force_a = -self.inertia * np.broadcast_to(np.eye(3)[:, :, None], (3, 3, k))
         return terms
 
-    def energy(self, z):
-        """Potential energy [J] of the points at heights z (k,): weight m g z less buoyancy."""
-        return float(np.sum(self.dry * z - self.buoyancy * sphere_integral(z, self.radius)))
+    def energy(self, state):
+        """Potential energy [J] (k,) of the points at their vertices (``state``: their kinematics,
+        (3, k)): weight m g z less buoyancy."""
+        z = state.r[2]
+        return self.dry * z - self.buoyancy * sphere_integral(z, self.radius)
 
     def params(self):
         """The compiled face's parameters per point (``SPEC.params``), each (k,)."""
@@ -115,7 +117,7 @@ class PointLoads:
 
 
 @njit(cache=True, _nrt=False)
-def point_point(ctx, p, old, new, state, hold, out, M, u):
+def point_point(ctx, p, old, new, state, hold, out):
     """The compiled face: one point's force at its vertex (``ctx.r``, ``ctx.v``, ``ctx.a``)."""
     q = p.points
     if not q.active:
@@ -131,7 +133,7 @@ def point_point(ctx, p, old, new, state, hold, out, M, u):
     if ctx.jac:
         out.A[2, 2] += -q.buoyancy * slope
     if q.drag != 0.0:
-        current, slope = u[0], u[1]
+        current, slope = ctx.points.current, ctx.points.slope
         if q.profile_n == 0:
             for a in range(3):
                 current[a] = q.current[a]
@@ -180,4 +182,4 @@ def build(setting):
 
 SPEC = LoadSpec("points", "node", (("dry", "f8"), ("buoyancy", "f8"), ("radius", "f8"), ("drag", "f8"),
                                    ("inertia", "f8"), ("current", "f8", (3,))) + PROFILE_FIELDS, point_point,
-                PointLoads, scratch=(0, 2), build=build)
+                PointLoads, scratch=(("current", "f8", (3,)), ("slope", "f8", (3,))), build=build)

@@ -183,14 +183,14 @@ def _strength(depth, su0, su1, ramp):
 
 
 @njit(cache=True, _nrt=False)
-def soil_point(ctx, p, old, new, state, hold, out, M, u):
+def soil_point(ctx, p, old, new, state, hold, out):
     """The compiled face: the macro-element's reaction at one full point and its consistent tangent
     (A = -f_r, B = -f_dr), the trial history to ``new.soil``. See ``cablefem.compiled.kernels``."""
     q = p.soil
     if not q.active:
         return
     r, t, held, anchor = ctx.r, ctx.t, old.soil.anchor, new.soil.anchor
-    e, e_n, shape = u[0], u[1], u[2]
+    e, e_n, shape, turn = ctx.soil.e, ctx.soil.e_n, ctx.soil.shape, ctx.soil.turn
     s, ds = _strength(-ctx.gap, q.su0, q.su1, q.ramp)
     for i in range(3):
         e[i] = r[i] - held[i]
@@ -226,12 +226,12 @@ def soil_point(ctx, p, old, new, state, hold, out, M, u):
     for i in range(3):
         for j in range(3):
             turn_ij = t[i] * e_n[j] + e_t * P[i, j]
-            M[0, i, j] = turn_ij
+            turn[i, j] = turn_ij
     for i in range(3):
         for j in range(3):
             # d(h e_n)/d(e_n) = h I - radial e_n e_n^T, times turn = -|r'| d(e_n)/dr'
-            normal = h * M[0, i, j] - radial * e_n[i] * (e_n[0] * M[0, 0, j] + e_n[1] * M[0, 1, j]
-                                                          + e_n[2] * M[0, 2, j])
+            normal = h * turn[i, j] - radial * e_n[i] * (e_n[0] * turn[0, j] + e_n[1] * turn[1, j]
+                                                         + e_n[2] * turn[2, j])
             B[i, j] += s / divisor * (q.a_t * (slope * t[i] * e_n[j] + c * P[i, j]) - q.a_n * normal)
 
 
@@ -260,7 +260,9 @@ SPEC = LoadSpec("soil", "full",
                  ("ramp", "f8")),
                 soil_point, Soil,
                 history=(("anchor", "f8", (3,)), ("slip", "f8"), ("work", "f8"), ("reaction", "f8", (3,))),
-                scratch=(1, 3), frames=("reaction", "slip"), build=build, section="soil",
+                # r - q, its part normal to the line, the reaction's shape, -|r'| d(e_n)/dr'
+                scratch=(("e", "f8", (3,)), ("e_n", "f8", (3,)), ("shape", "f8", (3,)), ("turn", "f8", (3, 3))),
+                frames=("reaction", "slip"), build=build, section="soil",
                 keys={"su_mudline": _STRENGTH, "su_gradient": v.limited(v.non_negative, "strength_gradient"),
                       "bearing_factor": v.limited(v.positive, "coefficient"),
                       "width_normal": v.limited(v.positive, "coefficient"),

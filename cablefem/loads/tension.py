@@ -113,7 +113,7 @@ class Tension:
 
 
 @njit(cache=True, _nrt=False)
-def tension_point(ctx, p, old, new, state, hold, out, M, u):
+def tension_point(ctx, p, old, new, state, hold, out):
     """The compiled face: the flux N = T t at one reduced point and D = N_dr + v_x N_dv, with the
     line pulling and pushing where Newton's taut correction holds it (``hold.tension.pull``);
     ``state.tension.taut``: whether the point is taut (see ``cablefem.compiled.kernels``)."""
