@@ -6,15 +6,16 @@ residual M A + G and the tangent g_x (K + v_x C + a_x (M + M_a)) in one loop ove
 quadrature points, straight into LAPACK's banded storage with the unknowns ordered along the line.
 At each point it fills a context record (``CONTEXT``: position, its derivatives, velocity,
 acceleration, the unit tangent, the seabed's projection, the step's factors, and each load's named
-scratch) and calls the loads of the point's rule that the line has, in catalog order (``full_point``, ``reduced_point``: a loop
-over the catalog's tuple of point kernels, which numba unrolls into direct calls, each behind the
-line's flag for it: a catalog load a scene does not use costs a flag test, not a call). Each load reads its parameters by
-name from the element's record (``p.drag.normal``), works in its own scratch in the context
-(``ctx.drag.w``; another load's only where its spec ``reads`` it: friction reads the contact's
-``ctx.contact.pressure``), writes its branch state to the point's state record, reads its holds
-and its committed history, writes its trial history, and adds its force and Jacobian blocks to
-the output record (``OUT``: f, A = -(f_r + v_x f_v + a_x f_a),
-B = -f_dr at full points; the flux N and D = N_dr + v_x N_dv at reduced ones).
+scratch) and calls the loads of the point's rule that the line has, in catalog order
+(``full_point``, ``reduced_point``: a loop over the catalog's tuple of point kernels, which numba
+unrolls into direct calls, each behind the line's flag for it: a catalog load a scene does not use
+costs a flag test, not a call). Each load reads its parameters by name from the element's record
+(``p.drag.normal``), works in its own scratch in the context (``ctx.drag.w``; another load's only
+where its spec ``reads`` it: friction reads the contact's ``ctx.contact.normal_force``), writes its
+branch state to the point's state record, reads its holds and its committed history, writes its
+trial history, and adds its force and Jacobian blocks to the output record (``OUT``: f,
+A = -(f_r + v_x f_v + a_x f_a), B = -f_dr at full points; the flux N and D = N_dr + v_x N_dv at
+reduced ones).
 
 The kernels run with numba's reference counting off (``_nrt=False``: they allocate nothing; with
 it on, every scratch view and array argument costs an atomic increment and decrement, which was

@@ -10,7 +10,7 @@ and the branch holds it reads (Newton's corrections, ``cablefem.dynamics.policy`
 and the loads whose scratch it reads. The system (``cablefem.fem.system``), the compiled
 evaluation (``cablefem.compiled.kernels``) and the compiled steps all build their load set, parameter
 records, per-point records and scratch from this list by name: a kernel reads ``p.drag.normal``
-from the element's record and ``ctx.contact.pressure`` from the point context, never a column or
+from the element's record and ``ctx.contact.normal_force`` from the point context, never a column or
 slot number.
 
 ``CATALOG`` order is the order the loads add their forces at a point (the compiled and the

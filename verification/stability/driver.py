@@ -69,6 +69,8 @@ class EnergyLedger:
             elastic = system.tension.evaluate(State(reduced.r, reduced.dr), False).flux
             power["internal"] = float(np.einsum("ceq,ceq,eq->", damped - elastic, reduced.dv, fem.reduced.dx))
         contact = system.contact.evaluate(state, False).force
+        if system.has("friction"):  # on the normal force the contact just handed it
+            contact = contact + system.load("friction").evaluate(state, False).force
         spring = system.contact.evaluate(State(state.r, state.dr), False).force
         power["seabed"] = -float(np.einsum("ceq,ceq,eq->", contact - spring, state.v, fem.full.dx))
         for load in self.drag:
