@@ -21,15 +21,14 @@ from cablefem.dynamics.registry import INTEGRATORS
 from cablefem.dynamics.schemes import integrator_options
 from cablefem.dynamics.step_control import StepControl
 from cablefem.errors import ConvergenceError, InputError, OutputError
-from cablefem.fem.system import build_system
 from cablefem.io.checks import check_names, check_run
 from cablefem.io.output import (RowsFile, deferred_signals, failure as write_failure, inside, prepare_folder,
                                 remove_partials, write_atomic)
 from cablefem.io.vtk import TimeSeriesWriter, polyline_mesh
-from cablefem.model.network import anchor_path, boundary_path, dynamic_lines
+from cablefem.model.network import anchor_path, boundary_path
 from cablefem.runs.network_output import NetworkRows, body_reference, frame_marks
 from cablefem.runs.results import LineSampler, line_fields
-from cablefem.statics.scene import start_states
+from cablefem.statics.scene import run_start
 
 
 #: largest rho_inf of generalised-alpha that stayed bounded on a stiff taut line at omega dt >> 1
@@ -97,8 +96,7 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
             raise write_failure(error, seabed_vtu) from None
         integrator_class = INTEGRATORS[solver.integrator]
         options = integrator_options(solver)
-        systems = [build_system(scene, line) for line in dynamic_lines(scene)]
-        states, summary["static_newton_iterations"] = start_states(scene, systems=systems)
+        systems, states, summary["static_newton_iterations"] = run_start(scene)
         integrators += [integrator_class(system, X0, boundary_path(scene, line), dt=dt,
                                          anchor=anchor_path(scene, line), **options)
                         for system, line, X0 in zip(systems, scene.lines, states)]
