@@ -98,6 +98,7 @@ class Integrator:
         self.max_iterations = max_iterations
         self.lumped = lumped  # the mass M and its free block M_free are assembled on first use
         self.length = system.line.unstretched_length
+        self.end_points = system.points_at_ends  # a point's load rides on an end: ``reactions`` leave it out
         self.scale = float(np.linalg.norm(system.weight_vector()[fem.free_dofs])) or 1.0
         self.counters = np.zeros(len(policy.COUNTERS), dtype=np.int64)
         self.last_h = None  # the last accepted step [s]
@@ -351,12 +352,18 @@ class Integrator:
         return float(error.max() / max(tension.max(), 1e-12 * EA.max()))
 
     def reactions(self):
-        """Forces (3,) the line exerts on its fairlead and anchor at the current state [N]."""
+        """Forces (3,) the line exerts on its fairlead and anchor at the current state [N]: minus
+        the rows there, less the load of a point riding on that end (the line's own force,
+        ``LineSystem.end_point_loads``)."""
         rows = self.residual_rows
         if rows is None:
             residual, _ = self.system.evaluate(self.system.state(self.X, self.V, self.A, self.t), jacobian=False)
             rows = residual + self.inertia(self.A)
-        return -rows[self.fem.fairlead_dof], -rows[self.fem.anchor_dof]
+        fairlead, anchor = -rows[self.fem.fairlead_dof], -rows[self.fem.anchor_dof]
+        if self.end_points:
+            points = self.system.end_point_loads(self.X, self.V, self.A, self.t)
+            fairlead, anchor = fairlead - points[0], anchor - points[1]
+        return fairlead, anchor
 
     def statistics(self):
         """Counters as a dict, for summary.json."""

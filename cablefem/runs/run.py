@@ -136,8 +136,9 @@ def _advance(scene, integrators, outputs, step_control, tracker, duration, dt):
         t = rows[-1][0]
         if t >= frame * every - near:
             bodies = [(body_reference(scene.bodies[name], t), rows) for name, rows in body_marks]
-            frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V, sampler=sampler)
-                                           for i, sampler in zip(integrators, samplers)], marks, bodies))
+            frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V, sampler=sampler, ends=ends)
+                                           for i, sampler, ends in zip(integrators, samplers, rows[-1][1])],
+                                          marks, bodies))
             frame = int(np.floor((t + near) / every)) + 1
         return t
 
