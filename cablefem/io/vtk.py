@@ -9,6 +9,7 @@ ParaView and pyvista open, listing every complete frame, and no partial
 """
 
 import os
+import re
 import time
 from xml.sax.saxutils import quoteattr
 
@@ -17,7 +18,7 @@ import numpy as np
 
 from cablefem.io.output import GrowingFile, inside, replace_into, write_atomic
 
-__all__ = ["TimeSeriesWriter", "polyline_mesh", "read_collection", "write_atomic"]
+__all__ = ["TimeSeriesWriter", "polyline_mesh", "read_collection", "series_files", "write_atomic"]
 
 
 def polyline_mesh(lines, points=(), bodies=()):
@@ -117,6 +118,15 @@ class TimeSeriesWriter:
         self._collection.write([self.HEAD, bytes(self._rows), self.TAIL])
         self.listed = len(self.frames)
         self._written = time.monotonic()
+
+
+def series_files(folder, name):
+    """The files of the time series ``name`` in ``folder``, as ``TimeSeriesWriter`` names them: the
+    collection ``<name>.pvd`` and the frames ``<name>_NNNNN.vtu`` (nothing else that starts so)."""
+    frame = re.compile(re.escape(name) + r"_[0-9]{5,}\.vtu")
+    with os.scandir(folder) as entries:
+        return sorted(entry.path for entry in entries if not entry.is_dir(follow_symlinks=False)
+                      and (entry.name == f"{name}.pvd" or frame.fullmatch(entry.name)))
 
 
 def read_collection(path):

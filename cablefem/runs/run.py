@@ -10,7 +10,9 @@ whole rows computed so far and a summary saying where it stopped; one killed
 outright leaves all of that but the summary.
 """
 
+import contextlib
 import json
+import os
 import sys
 import time
 
@@ -24,12 +26,15 @@ from cablefem.errors import ConvergenceError, InputError, OutputError
 from cablefem.io.checks import check_names, check_run
 from cablefem.io.output import (RowsFile, deferred_signals, failure as write_failure, inside, prepare_folder,
                                 remove_partials, write_atomic)
-from cablefem.io.vtk import TimeSeriesWriter, polyline_mesh
+from cablefem.io.vtk import TimeSeriesWriter, polyline_mesh, series_files
 from cablefem.model.network import anchor_path, boundary_path
 from cablefem.runs.network_output import NetworkRows, body_reference, frame_marks
 from cablefem.runs.results import LineSampler, line_fields
 from cablefem.statics.scene import run_start
 
+
+#: the files every run writes in its folder, beside its frames and their .pvd
+RUN_FILES = ("seabed.vtu", "tensions.csv", "summary.json")
 
 #: largest rho_inf of generalised-alpha that stayed bounded on a stiff taut line at omega dt >> 1
 SAFE_RHO_INF = 0.5
@@ -80,8 +85,8 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
     duration = float(solver.duration if duration is None else duration)
     dt = float(solver.dt if dt is None else dt)
     out_dir = prepare_folder(out_dir or scene.output.dir)
-    remove_partials(out_dir, (f"{scene.name}_", f"{scene.name}.pvd", "seabed.vtu", "tensions.csv",
-                              "summary.json"))
+    remove_partials(out_dir, (f"{scene.name}_", f"{scene.name}.pvd", *RUN_FILES))
+    remove_earlier_run(out_dir, scene.name)
     start = time.perf_counter()
     summary = {"scene": scene.name, "seabed": scene.seabed.describe(),
                "notes": list(scene.notes) + setting_warnings(scene, dt), "dt": dt, "duration": duration}
@@ -115,6 +120,15 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
         _finish(summary, status, integrators, outputs, step_control, tracker, start, out_dir,
                 reraise=status == "completed")
     return summary
+
+
+def remove_earlier_run(out_dir, name):
+    """Remove what an earlier run of a scene called ``name`` wrote in ``out_dir`` (its frames and
+    .pvd, and the folder's seabed.vtu, tensions.csv and summary.json, which every run writes), so
+    that the folder holds this run's outputs only; no other file is touched."""
+    for path in series_files(out_dir, name) + [inside(out_dir, f) for f in RUN_FILES]:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(path)
 
 
 def _advance(scene, integrators, outputs, step_control, tracker, duration, dt):
