@@ -107,7 +107,7 @@ class Integrator:
         # the anchor and fairlead rows (the reactions), leaving the others zero
         self.lu, self.lu_factors = None, None
         self.fused = None
-        if compiled and not lumped:
+        if compiled and not lumped and fem.free_dofs.size:  # a line without unknowns: the numpy path
             from cablefem.compiled.evaluator import FusedEvaluator
 
             self.fused = FusedEvaluator.for_system(system, system.props["mass"])
@@ -119,6 +119,8 @@ class Integrator:
             raise ValueError(f"newton must be auto, full or modified, got {newton!r}")
         self.newton_mode = {"full": policy.FULL, "modified": policy.MODIFIED}.get(
             newton, policy.SWITCHING if self.fused is not None else policy.MODIFIED)
+        if not fem.free_dofs.size:  # one element between prescribed ends: each step one evaluation
+            self.newton_mode = policy.FULL
         self.full_steps_left = 0  # "auto": attempts still to run in full Newton
         self.contraction = -1.0  # the kept factors' contraction estimate (policy.newton), < 0: none
         # positions converge when the force their error makes, EA / h * dx, is below the
