@@ -146,7 +146,8 @@ def read_toml_scene(path, data=None):
     motion = _motion(data["motion"], folder) if "motion" in data else Motion()
     solver = replace(base.solver if base else Solver(), **_section(data, "solver", SOLVER_KEYS))
     output = replace(Output(), **_section(data, "output", OUTPUT_KEYS))
-    notes.append(seabed_note)
+    if seabed_note is not None:  # a plane is used as given
+        notes.append(seabed_note)
     load_settings = {spec.section: v.pick(v.table(data[spec.section], spec.section), spec.section, spec.keys,
                                           required=spec.required)
                      for spec in catalog.CATALOG if spec.section and spec.section in data}

@@ -16,7 +16,7 @@ from xml.sax.saxutils import quoteattr
 import meshio
 import numpy as np
 
-from cablefem.io.output import GrowingFile, inside, replace_into, write_atomic
+from cablefem.io.output import GrowingFile, inside, replace_into, tidy, write_atomic
 
 __all__ = ["TimeSeriesWriter", "polyline_mesh", "read_collection", "series_files", "write_atomic"]
 
@@ -104,7 +104,7 @@ class TimeSeriesWriter:
         file_name = f"{self.name}_{len(self.frames):05d}.vtu"
         replace_into(lambda tmp: meshio.write(tmp, mesh, file_format="vtu"), inside(self.folder, file_name))
         self.frames.append((float(t), file_name))
-        self._rows += (f'    <DataSet timestep="{float(t)!r}" group="" part="0" '
+        self._rows += (f'    <DataSet timestep="{tidy(float(t))!r}" group="" part="0" '
                        f'file={quoteattr(file_name)}/>\n').encode("utf-8")
         if len(self.frames) <= self.every_frame or time.monotonic() - self._written >= self.refresh:
             self._write_collection()

@@ -25,7 +25,7 @@ from cablefem.dynamics.step_control import StepControl
 from cablefem.errors import ConvergenceError, InputError, OutputError
 from cablefem.io.checks import check_names, check_run
 from cablefem.io.output import (RowsFile, deferred_signals, failure as write_failure, inside, prepare_folder,
-                                remove_partials, write_atomic)
+                                remove_partials, tidy, write_atomic)
 from cablefem.io.vtk import TimeSeriesWriter, polyline_mesh, series_files
 from cablefem.model.network import anchor_path, boundary_path
 from cablefem.runs.network_output import NetworkRows, body_reference, frame_marks
@@ -198,7 +198,7 @@ def _finish(summary, status, integrators, outputs, step_control, tracker, start,
             if step_control.adaptive else None})
         summary.setdefault("static_newton_iterations", 0)
         try:
-            write_atomic(inside(out_dir, "summary.json"), json.dumps(summary, indent=1))
+            write_atomic(inside(out_dir, "summary.json"), json.dumps(tidy(summary), indent=1))
         except OutputError as error:
             errors.append(error)
     if errors and reraise:
@@ -227,7 +227,7 @@ def _row(t, forces, extra=()):
     values = [t]
     for fairlead, anchor in forces:
         values += [np.linalg.norm(fairlead), np.linalg.norm(anchor), *fairlead]
-    return [f"{x:.10g}" for x in [*values, *extra]]
+    return [f"{x + 0.0:.10g}" for x in [*values, *extra]]  # + 0.0: no "-0"
 
 
 def _columns(scene, network=None):

@@ -46,6 +46,14 @@ def numpy_statics(scene):
     return replace(scene, seabed=seabed, solver=replace(scene.solver, assembly="numpy"))
 
 
+def warm_imports():
+    """Import the modules a static solve imports on first use (scipy.optimize among them, ~0.4 s
+    in a fresh process), so that timing the solve times the solve."""
+    import cablefem.loads.friction  # noqa: F401 (the contact load's builder)
+    import cablefem.runs.results  # noqa: F401
+    import cablefem.statics.touchdown  # noqa: F401
+
+
 def solve_scene_static(scene):
     """Static equilibrium of every line of a scene: (list of LineReport, Newton iterations, results).
     With ``[soil]`` each line follows its pretension path (``cablefem.statics.pretension``)."""
