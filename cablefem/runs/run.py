@@ -124,9 +124,12 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
 
 def remove_earlier_run(out_dir, name):
     """Remove what an earlier run of a scene called ``name`` wrote in ``out_dir`` (its frames and
-    .pvd, and the folder's seabed.vtu, tensions.csv and summary.json, which every run writes), so
-    that the folder holds this run's outputs only; no other file is touched."""
-    for path in series_files(out_dir, name) + [inside(out_dir, f) for f in RUN_FILES]:
+    .pvd, the pictures ``cablefem render`` made of them there, and the folder's seabed.vtu,
+    tensions.csv and summary.json, which every run writes), so that the folder holds this run's
+    outputs only; no other file is touched."""
+    from cablefem.post import picture_files
+
+    for path in series_files(out_dir, name) + picture_files(out_dir, name) + [inside(out_dir, f) for f in RUN_FILES]:
         with contextlib.suppress(FileNotFoundError):
             os.unlink(path)
 
