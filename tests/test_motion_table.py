@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from cablefem.errors import InputError
 from cablefem.io import load_scene
 from cablefem.model.motion import fairlead_motion
 from cablefem.model.scene import Motion
@@ -52,6 +53,31 @@ def test_a_table_holds_its_ends_and_a_short_one_is_linear():
     d, v, a = fairlead_motion(motion, np.array([0.0, 2.0, 5.0]))
     assert np.allclose(d, [[0, 0, 0], [2, 1, 0], [4, 2, 0]])
     assert np.allclose(v, [[0, 0, 0], [2, 1, 0], [0, 0, 0]]) and np.all(a == 0.0)
+
+
+def test_a_linear_table_jumps_in_velocity_at_its_rows(tmp_path):
+    """interpolation = "linear": straight lines, the velocity their slopes, no acceleration; the key
+    belongs to tables only."""
+    motion = Motion(kind="table", times=np.array([0.0, 1.0, 2.0, 3.0]),
+                    positions=np.array([[0.0, 0, 0], [1.0, 0, 0], [1.0, 0, 0], [3.0, 0, 0]]), interpolation="linear")
+    d, v, a = fairlead_motion(motion, np.array([0.5, 0.999, 1.001, 2.5]))
+    assert np.allclose(d[:, 0], [0.5, 0.999, 1.0, 2.0]) and np.allclose(v[:, 0], [1.0, 1.0, 0.0, 2.0])
+    assert not a.any()
+    (tmp_path / "motion.csv").write_text("0,0,0,0\n1,1,0,0\n2,1,0,0\n3,3,0,0\n")
+    text = (ROOT / "examples" / "flume_flat.toml").read_text()
+    start = text.index("[motion]")
+    end = text.index("[solver]")
+    for motion_table, says in (('kind = "table"\nfile = "motion.csv"\ninterpolation = "linear"\n', None),
+                               ('kind = "table"\nfile = "motion.csv"\ninterpolation = "cubic"\n', "motion.interpolation"),
+                               ('kind = "harmonic"\namplitude = [1.0, 0, 0]\nperiod = 6.0\ninterpolation = "linear"\n',
+                                "does not apply to motion kind 'harmonic'")):
+        scene_file = tmp_path / "scene.toml"
+        scene_file.write_text(text[:start] + "[motion]\n" + motion_table + "\n" + text[end:])
+        if says is None:
+            assert load_scene(scene_file).motion.interpolation == "linear"
+        else:
+            with pytest.raises(InputError, match=says):
+                load_scene(scene_file)
 
 
 def test_a_harmonic_motion_as_a_table_runs_as_the_harmonic_motion():

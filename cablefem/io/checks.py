@@ -196,8 +196,8 @@ def peak_chord_strain(line, motion):
     The displacement is S(t) d(t) with the ramp S in [0, 1]: every displacement the motion
     reaches lies in the convex hull of 0 and its unramped extremes, and the distance from the
     anchor, a convex function, is largest at one of those: o +- A (harmonic), the point of the
-    circle around o farthest from the anchor (circular), a sample of the table's spline (its rows
-    and eight points between each two: ``table_samples``)."""
+    circle around o farthest from the anchor (circular), a sample of the table's motion (its rows
+    and seven points between each two: ``table_samples``)."""
     chord = line.fairlead - line.anchor
     candidates, times = [np.zeros(3)], [None]
     offset = np.asarray(motion.offset, dtype=float)
@@ -226,14 +226,15 @@ def peak_chord_strain(line, motion):
 
 
 def table_samples(motion, pieces=8):
-    """Times (m,) [s] and the table spline's positions, velocities and accelerations (m, 3) at its
-    rows and ``pieces`` - 1 points between each two (``cablefem.model.motion.table_spline``)."""
-    from cablefem.model.motion import table_spline
+    """Times (m,) [s] and a table motion's positions, velocities and accelerations (m, 3) (its
+    spline's or its straight lines', ``cablefem.model.motion.table_kinematics``) at its rows and
+    ``pieces`` - 1 points between each two."""
+    from cablefem.model.motion import table_kinematics
 
-    times, spline = table_spline(motion)
+    times = np.asarray(motion.times, dtype=float)
     with np.errstate(over="ignore", invalid="ignore"):
         at = np.append((times[:-1, None] + np.diff(times)[:, None] * np.arange(pieces) / pieces).ravel(), times[-1])
-        return at, spline(at), spline(at, 1), spline(at, 2)
+        return (at, *table_kinematics(motion, at))
 
 
 def _check_pace(scene, motion):

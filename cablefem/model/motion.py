@@ -48,20 +48,35 @@ def _raw(motion, t):
         a[:, i], a[:, j] = -R * omega**2 * s[:, 0], -R * omega**2 * c[:, 0]
         return offset + d, v, a
     if kind == "table":
-        return _table(motion, t)
+        return table_kinematics(motion, t)
     raise ValueError(f"unknown motion kind {kind!r}")
 
 
-def _table(motion, t):
-    """Positions from a table, smooth between its rows (``table_spline``), their first and second
-    time derivatives, at the times t (n,); before the first row and after the last the fairlead
-    stays there (velocity and acceleration zero)."""
+def table_kinematics(motion, t):
+    """Positions from a table, smooth between its rows (``table_spline``; with ``interpolation =
+    "linear"`` straight lines, ``_linear``), their first and second time derivatives, at the times
+    t (n,); before the first row and after the last the fairlead stays there (velocity and
+    acceleration zero)."""
+    if motion.interpolation == "linear":
+        return _linear(np.asarray(motion.times, dtype=float), np.asarray(motion.positions, dtype=float), t)
     times, spline = table_spline(motion)
     inside = np.clip(t, times[0], times[-1])
     d, v, a = spline(inside), spline(inside, 1), spline(inside, 2)
     outside = (t < times[0]) | (t > times[-1])
     v[outside], a[outside] = 0.0, 0.0
     return d, v, a
+
+
+def _linear(times, positions, t):
+    """Piecewise-linear positions from a table, their slopes, and zero accelerations (held at the
+    ends), at the times t (n,): the velocity jumps at every row (a dead stop, on purpose)."""
+    k = np.clip(np.searchsorted(times, t, side="right") - 1, 0, len(times) - 2)
+    slope = (positions[k + 1] - positions[k]) / (times[k + 1] - times[k])[:, None]
+    before, after = t <= times[0], t >= times[-1]
+    slope[before | after] = 0.0
+    d = positions[k] + (t - times[k])[:, None] * slope
+    d[before], d[after] = positions[0], positions[-1]
+    return d, slope, np.zeros_like(d)
 
 
 #: degree of the spline through a motion table's rows: quintic (C4; for a row spacing h the

@@ -55,8 +55,9 @@ class Motion:
 
     kind: "fixed" | "harmonic" | "circular" | "table". Harmonic: amplitude (3,) [m],
     period [s], offset (3,) [m]. Circular: radius [m], period [s], plane ("xy", "xz",
-    "yz"). Table: times (k,) [s] and positions (k, 3) [m]. ``ramp`` [s] scales the whole
-    displacement by the smoothstep 3u^2 - 2u^3, u = t / ramp.
+    "yz"). Table: times (k,) [s] and positions (k, 3) [m], joined by a smooth spline or, with
+    ``interpolation = "linear"``, by straight lines (``cablefem.model.motion``). ``ramp`` [s] scales
+    the whole displacement by the smoothstep 3u^2 - 2u^3, u = t / ramp.
     """
 
     kind: str = "fixed"
@@ -69,6 +70,7 @@ class Motion:
     times: np.ndarray | None = None
     positions: np.ndarray | None = None
     phase: tuple = ()  # a body's harmonic motion: per component [rad]; empty: none
+    interpolation: str = "spline"  # table: "spline" | "linear"
 
 
 @dataclass(frozen=True)
