@@ -113,22 +113,26 @@ def node_tension(system, X, anchor_tension, fairlead_tension):
     """Tension [N] at the vertices (n,), anchor first (``LineSampler.tension``): the tension law's T
     averaged over the two elements that meet at an interior vertex (r' jumps there), the end
     tensions given at the ends."""
-    sampler = LineSampler(system, system.fem.mesh.p[0])
-    return sampler.tension(system, X, ends=(fairlead_tension, anchor_tension))
+    return LineSampler(system, system.fem.mesh.p[0]).tension(X, ends=(fairlead_tension, anchor_tension))
 
 
-def point_tension(system, element, dr, dv=None):
-    """The line's tension law (its ``tension`` load: T = EA (e + beta de/dt), no compression) [N]
-    (n,) at points of elements ``element`` (n,) with dr/ds and dv/ds (n, 3)."""
+def tension_law(system, element):
+    """The line's tension law (its ``tension`` load: T = EA (e + beta de/dt), no compression) at
+    points of the elements ``element`` (n,): the load with its per-element values taken there."""
     from copy import copy
-
-    from cablefem.loads import State
 
     law = copy(system.tension)
     for name in ("EA", "beta", "slack_damping"):  # per element (nel, 1): the points' elements
         if getattr(law, name, None) is not None:
             setattr(law, name, getattr(law, name)[element])
     law.compression = False
+    return law
+
+
+def point_tension(law, dr, dv=None):
+    """Tension [N] (n,) of a ``tension_law`` at its points with dr/ds and dv/ds (n, 3)."""
+    from cablefem.loads import State
+
     state = State(None, dr.T[:, :, None], dv=None if dv is None else dv.T[:, :, None])
     flux = law.evaluate(state, jacobian=False).flux[:, :, 0]
     return np.einsum("cn,nc->n", flux, dr) / np.linalg.norm(dr, axis=1)
@@ -193,8 +197,8 @@ def sample_arc_lengths(system, per_element=None):
 class LineSampler:
     """The basis of one line's FEM at fixed arc lengths s (n,) [m] (default: each element split
     into ``order`` pieces), evaluated once: frames of a run sample the same points every time.
-    At an interior vertex, where r' jumps, the two elements that meet there are sampled too
-    (``sides``: just inside each, 1e-9 of an element from the vertex)."""
+    At an interior vertex, where r' jumps, the two elements that meet there are sampled too (just
+    inside each, 1e-9 of an element from the vertex), and their values averaged."""
 
     def __init__(self, system, s=None):
         fem = system.fem
@@ -205,7 +209,11 @@ class LineSampler:
         self.vertices = np.flatnonzero(np.isin(self.s, nodes[1:-1]))
         inset = 1e-9 * float(np.min(np.diff(nodes)))
         at = self.s[self.vertices]
-        self.sides = [_basis(fem, at - inset)[1:], _basis(fem, at + inset)[1:]]  # (gradients, element, dofs)
+        left, right = _basis(fem, at - inset), _basis(fem, at + inset)
+        # r' of every point in one product: the points, then the vertices from the left, from the right
+        self.stacked = (np.concatenate([self.gradients, left[1], right[1]]),
+                        np.concatenate([self.dofs, left[3], right[3]]))
+        self.law = tension_law(system, np.concatenate([self.element, left[2], right[2]]))
 
     def evaluate(self, X):
         """X (N, 3) at the sample points, (n, 3)."""
@@ -215,28 +223,34 @@ class LineSampler:
         """dX/ds (N, 3) at the sample points, (n, 3)."""
         return np.einsum("nl,nlc->nc", self.gradients, X[self.dofs])
 
-    def strain(self, X):
-        """Axial strain |r'| - 1 (n,) at the sample points, the mean of the two elements' at an
-        interior vertex."""
-        e = np.linalg.norm(self.derivative(X), axis=1) - 1.0
-        if self.vertices.size:
-            sides = [np.linalg.norm(np.einsum("nl,nlc->nc", g, X[d]), axis=1) - 1.0 for g, _, d in self.sides]
-            e[self.vertices] = 0.5 * (sides[0] + sides[1])
-        return e
-
-    def tension(self, system, X, V=None, ends=None):
-        """Tension [N] (n,) at the sample points: the line's tension law at a point inside an element
-        (``point_tension``), the mean of the two elements' at an interior vertex, and at the ends
-        the line's tension there, ``ends`` = (fairlead, anchor): forces (3,) or their magnitudes."""
-        T = point_tension(system, self.element, self.derivative(X), None if V is None else self.derivative(V))
-        if self.vertices.size:
-            sides = [point_tension(system, element, np.einsum("nl,nlc->nc", g, X[d]),
-                                   None if V is None else np.einsum("nl,nlc->nc", g, V[d]))
-                     for g, element, d in self.sides]
-            T[self.vertices] = 0.5 * (sides[0] + sides[1])
+    def axial(self, X, V=None, ends=None):
+        """Axial strain |r'| - 1 and tension [N] (n,) each at the sample points: inside an element
+        its own (the tension from the line's law, ``tension_law``), at an interior vertex the mean of
+        the two elements', and at the ends the line's tension there, ``ends`` = (fairlead, anchor):
+        forces (3,) or their magnitudes (without, the law's there)."""
+        dr = self._sides(X)
+        strain = self._points(np.linalg.norm(dr, axis=1) - 1.0)
+        tension = self._points(point_tension(self.law, dr, None if V is None else self._sides(V)))
         if ends is not None:
-            T[self.fairlead], T[self.anchor] = (float(np.linalg.norm(end)) for end in ends)
-        return T
+            tension[self.fairlead], tension[self.anchor] = (float(np.linalg.norm(end)) for end in ends)
+        return strain, tension
+
+    def tension(self, X, V=None, ends=None):
+        """Tension [N] (n,) at the sample points (``axial``)."""
+        return self.axial(X, V, ends)[1]
+
+    def _sides(self, X):
+        """dX/ds at the points and at the interior vertices from either side, (n + 2 m, 3)."""
+        gradients, dofs = self.stacked
+        return np.einsum("nl,nlc->nc", gradients, X[dofs])
+
+    def _points(self, values):
+        """Values at the points (n,) from ``_sides``' rows: at an interior vertex the mean of its two."""
+        n, m = len(self.s), len(self.vertices)
+        out = values[:n].copy()
+        if m:
+            out[self.vertices] = 0.5 * (values[n:n + m] + values[n + m:])
+        return out
 
 
 def _basis(fem, s):
@@ -258,8 +272,8 @@ def line_fields(system, X, V=None, s=None, sampler=None, ends=None):
     stiffness = system.contact.stiffness[element, 0] if system.has("contact") else 0.0 * element
     contact = (stiffness * np.maximum(-proj.gap, 0.0))[:, None] * proj.direction
     velocity = np.zeros_like(points) if V is None else sampler.evaluate(V)
-    fields = {"points": points, "tension": sampler.tension(system, X, V, ends),
-              "strain": sampler.strain(X), "velocity": velocity, "seabed_gap": proj.gap,
+    strain, tension = sampler.axial(X, V, ends)
+    fields = {"points": points, "tension": tension, "strain": strain, "velocity": velocity, "seabed_gap": proj.gap,
               "contact_force": contact}
     fields.update(history_fields(system, element))
     return fields
