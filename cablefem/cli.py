@@ -29,12 +29,13 @@ def cmd_static(args):
     """``cablefem static [SCENE] [--json FILE]``."""
     from cablefem.io.output import prepare_file, write_json
     from cablefem.runs.static import network_json
-    from cablefem.statics.scene import numpy_statics, static_network
+    from cablefem.statics.scene import numpy_statics, static_network, warm_imports
 
-    start = time.perf_counter()
     scene = numpy_statics(_load(args.scene))
     if args.json:
         prepare_file(args.json)  # before the work: a --json that cannot be written fails now
+    warm_imports()  # start-up, not the solve (docs/outputs.md, wall_time_s)
+    start = time.perf_counter()
     reports, iterations, results, network = static_network(scene)
     wall = time.perf_counter() - start
     print(f"scene {scene.name}: seabed {scene.seabed.describe()}")
@@ -72,6 +73,7 @@ def cmd_static(args):
             "residuals": [res.residual for res in results],
             "scale_free_residuals": [res.increment for res in results],
         })
+        print(f"wrote {args.json}")
 
 
 def cmd_run(args):
@@ -135,9 +137,31 @@ def cmd_plot(args):
     print(f"wrote {path}")
 
 
+def cmd_render(args):
+    """``cablefem render OUT [--frame K ... | --every N] [--animation FILE] [--png-dir DIR] [--scalars NAME]
+    [--clim LO HI] [--camera VIEW] [--size W H] [--fps N]``: pictures of a run's frames."""
+    from cablefem.post import render_run
+
+    frames = args.frame
+    if args.every is not None:
+        if args.every < 1 or frames:
+            raise InputError("--every takes a whole number >= 1, and not with --frame", key="--every")
+        from cablefem.io.vtk import read_collection
+        from cablefem.post import collection
+
+        frames = list(range(0, len(read_collection(collection(args.out))[0]), args.every))
+    paths = render_run(args.out, frames=frames, png_dir=args.png_dir, animation=args.animation,
+                       scalars=args.scalars, clim=args.clim, camera=args.camera, size=args.size, fps=args.fps)
+    where = paths[0] if len(paths) == 1 else f"{len(paths)} pictures to {os.path.dirname(paths[0]) or '.'}"
+    print(f"wrote {where}")
+
+
 def build_parser():
     """The argument parser of the ``cablefem`` command."""
+    from cablefem import __version__
+
     parser = _Parser(prog="cablefem", description=__doc__.splitlines()[0])
+    parser.add_argument("--version", action="version", version=f"cablefem {__version__}")
     commands = parser.add_subparsers(dest="command", required=True)
     static = commands.add_parser("static", help="static equilibrium of a scene")
     static.add_argument("scene", nargs="?", help="TOML scene or MoorDyn v2 input file (default: built-in scene)")
@@ -158,6 +182,23 @@ def build_parser():
     plot.add_argument("--by", metavar="KEY", help="sweep: one curve per value of this parameter "
                       "(default: the second varied one)")
     plot.set_defaults(func=cmd_plot)
+    render = commands.add_parser("render", help="pictures of a run's frames: PNGs or an animation")
+    render.add_argument("out", metavar="OUT", help="output folder of a run")
+    render.add_argument("--frame", type=int, action="append", metavar="K",
+                        help="only frame K (repeat for more; negative from the end; default: every frame)")
+    render.add_argument("--every", type=int, metavar="N", help="every N-th frame (0, N, 2N, ...)")
+    render.add_argument("--animation", metavar="FILE", help="one animation instead of PNGs: .gif "
+                        "(or .mp4 with imageio-ffmpeg installed)")
+    render.add_argument("--png-dir", metavar="DIR", help="folder of the PNGs (default: OUT)")
+    render.add_argument("--scalars", default="tension", metavar="NAME", help="the frames' array that colours "
+                        "the line (default: tension; docs/outputs.md lists them)")
+    render.add_argument("--clim", type=float, nargs=2, metavar=("LO", "HI"), help="colour range in the array's "
+                        "SI unit (default: its range over the whole run)")
+    render.add_argument("--camera", default="side", choices=("side", "top", "iso"), help="view (default: side)")
+    render.add_argument("--size", type=int, nargs=2, metavar=("W", "H"), help="picture size in pixels "
+                        "(default: 1600 wide, as tall as the scene needs)")
+    render.add_argument("--fps", type=float, default=10.0, help="animation: frames a second (default 10)")
+    render.set_defaults(func=cmd_render)
     sweep = commands.add_parser("sweep", help="many runs of a scene on Dask (docs/sweep.md)")
     sweep.add_argument("sweep", metavar="SWEEP", help="sweep file (TOML): base scene, axes, run kind")
     sweep.add_argument("--scheduler", metavar="ADDRESS", help="an existing Dask cluster's scheduler, "

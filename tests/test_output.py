@@ -123,3 +123,32 @@ def test_a_frame_of_lines_alone_has_no_network_cell_data():
     network = polyline_mesh([LINE, LINE], points=[(1, -1)])
     assert np.concatenate(network.cell_data["network"]).tolist() == [0, 0, 1]
     assert network.cells[1].data.tolist() == [[3]]  # the second line's last point
+
+
+def test_a_run_replaces_an_earlier_run_of_its_scene_and_nothing_else(tmp_path):
+    """A 0.3 s run into the folder of a 0.6 s run of the same scene leaves its own 4 frames only
+    (not the 7 before, nor a picture of them), and every other file as it was: another scene's
+    frames and collection, a file whose name only starts like a frame's, a folder named like one,
+    the user's notes."""
+    from cablefem.cli import main
+
+    def run(duration):
+        assert main(["run", "--out", str(tmp_path), "--duration", duration]) == 0
+
+    run("0.6")
+    name = next(tmp_path.glob("*.pvd")).stem
+    others = {"other.pvd": "<VTKFile/>", "other_00000.vtu": "x", f"{name}_00001.vtu.bak": "mine",
+              f"{name}_last.vtu": "mine too", "notes.txt": "keep", f"{name}_00002_b.vtu": "kept"}
+    for file, text in others.items():
+        (tmp_path / file).write_text(text)
+    (tmp_path / f"{name}_00099.vtu.d").mkdir()
+    (tmp_path / f"{name}_00006.png").write_bytes(b"a picture of the earlier run's last frame")
+    assert len(list(tmp_path.glob(f"{name}_?????.vtu"))) == 7
+    run("0.3")
+    frames = sorted(p.name for p in tmp_path.glob(f"{name}_?????.vtu"))
+    assert frames == [f"{name}_{k:05d}.vtu" for k in range(4)]
+    assert not (tmp_path / f"{name}_00006.png").exists()
+    assert read_collection(tmp_path / f"{name}.pvd")[0].tolist() == pytest.approx([0.0, 0.1, 0.2, 0.3])
+    assert {file: (tmp_path / file).read_text() for file in others} == others
+    assert (tmp_path / f"{name}_00099.vtu.d").is_dir()
+    assert len(np.loadtxt(tmp_path / "tensions.csv", delimiter=",", skiprows=1)) == 31

@@ -383,7 +383,8 @@ def place_ends(prob, k, j, h):
 
 @njit(cache=True, inline="always", _nrt=False)
 def reactions(prob, forces, k):
-    """The line's forces on fairlead and anchor into forces[k]: minus the rows there, which BDF2's
+    """The line's forces on fairlead and anchor into forces[k]: minus the rows there (less a point's
+    load riding on the end, ``kernels.subtract_node_loads``), which BDF2's
     ``finish`` left at the state; generalised-alpha's balance holds at t_{n+1-alpha_f}, so its rows are
     evaluated at the state over the end elements first, uncounted (as ``Integrator.reactions``).
     Returns the projection's status (0, or the points the walk did not place)."""
@@ -394,6 +395,11 @@ def reactions(prob, forces, k):
     for a in range(3):
         forces[k, 0, a] = -prob.rows[prob.fairlead_node, a]
         forces[k, 1, a] = -prob.rows[prob.anchor_node, a]
+    if prob.mesh.nodes.shape[0]:  # a point riding on an end: the line's own force leaves its load out
+        kernels.subtract_node_loads(prob.mesh, prob.pts, prob.work, (prob.X, prob.V, prob.A), prob.fairlead_node,
+                                    forces[k, 0])
+        kernels.subtract_node_loads(prob.mesh, prob.pts, prob.work, (prob.X, prob.V, prob.A), prob.anchor_node,
+                                    forces[k, 1])
     return 0
 
 

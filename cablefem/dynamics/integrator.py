@@ -98,6 +98,7 @@ class Integrator:
         self.max_iterations = max_iterations
         self.lumped = lumped  # the mass M and its free block M_free are assembled on first use
         self.length = system.line.unstretched_length
+        self.end_points = system.points_at_ends  # a point's load rides on an end: ``reactions`` leave it out
         self.scale = float(np.linalg.norm(system.weight_vector()[fem.free_dofs])) or 1.0
         self.counters = np.zeros(len(policy.COUNTERS), dtype=np.int64)
         self.last_h = None  # the last accepted step [s]
@@ -106,7 +107,7 @@ class Integrator:
         # the anchor and fairlead rows (the reactions), leaving the others zero
         self.lu, self.lu_factors = None, None
         self.fused = None
-        if compiled and not lumped:
+        if compiled and not lumped and fem.free_dofs.size:  # a line without unknowns: the numpy path
             from cablefem.compiled.evaluator import FusedEvaluator
 
             self.fused = FusedEvaluator.for_system(system, system.props["mass"])
@@ -118,6 +119,8 @@ class Integrator:
             raise ValueError(f"newton must be auto, full or modified, got {newton!r}")
         self.newton_mode = {"full": policy.FULL, "modified": policy.MODIFIED}.get(
             newton, policy.SWITCHING if self.fused is not None else policy.MODIFIED)
+        if not fem.free_dofs.size:  # one element between prescribed ends: each step one evaluation
+            self.newton_mode = policy.FULL
         self.full_steps_left = 0  # "auto": attempts still to run in full Newton
         self.contraction = -1.0  # the kept factors' contraction estimate (policy.newton), < 0: none
         # positions converge when the force their error makes, EA / h * dx, is below the
@@ -351,12 +354,18 @@ class Integrator:
         return float(error.max() / max(tension.max(), 1e-12 * EA.max()))
 
     def reactions(self):
-        """Forces (3,) the line exerts on its fairlead and anchor at the current state [N]."""
+        """Forces (3,) the line exerts on its fairlead and anchor at the current state [N]: minus
+        the rows there, less the load of a point riding on that end (the line's own force,
+        ``LineSystem.end_point_loads``)."""
         rows = self.residual_rows
         if rows is None:
             residual, _ = self.system.evaluate(self.system.state(self.X, self.V, self.A, self.t), jacobian=False)
             rows = residual + self.inertia(self.A)
-        return -rows[self.fem.fairlead_dof], -rows[self.fem.anchor_dof]
+        fairlead, anchor = -rows[self.fem.fairlead_dof], -rows[self.fem.anchor_dof]
+        if self.end_points:
+            points = self.system.end_point_loads(self.X, self.V, self.A, self.t)
+            fairlead, anchor = fairlead - points[0], anchor - points[1]
+        return fairlead, anchor
 
     def statistics(self):
         """Counters as a dict, for summary.json."""

@@ -26,7 +26,6 @@ import numpy as np
 from cablefem.dynamics import policy
 from cablefem.errors import ConvergenceError
 from cablefem.model.network import junction_ends
-from cablefem.loads import State
 
 
 class JunctionSteps:
@@ -53,13 +52,6 @@ class JunctionSteps:
                 fem = integrators[k].fem
                 dof = fem.end_dofs[end]
                 self.ends[k].append((end, int(np.searchsorted(fem.free_dofs, dof)), name, dof))
-        # per integrator: (end, node load, index in it) of a junction's own point riding on its end
-        self.joints = [[] for _ in integrators]
-        for k, integ in enumerate(integrators):
-            for load in integ.system.loads:
-                if getattr(load, "rule", "full") == "node":
-                    for end, _, _, dof in self.ends[k]:
-                        self.joints[k] += [(end, load, int(i)) for i in np.flatnonzero(load.vertices == dof)]
         self.own_reactions = [integ.reactions for integ in integrators]
         for k, integ in enumerate(integrators):  # each member marches and reports through the group
             integ.march = (lambda times, k=k: self.march_member(k, times))
@@ -108,13 +100,7 @@ class JunctionSteps:
         """Forces (2, 3) [N] member k's string exerts on its fairlead and anchor; at a junction end
         the string's own, without the junction's weight, buoyancy, drag and inertia that ride on
         that end as a joint (``network.dynamic_lines``)."""
-        integ = self.integrators[k]
-        forces = np.array(self.own_reactions[k]())
-        for end, load, i in self.joints[k]:
-            at = load.vertices
-            nodes = State(integ.X[at].T, None, integ.V[at].T, None, integ.A[at].T, integ.t)
-            forces[1 - end] -= load.evaluate(nodes, jacobian=False).force[:, i]
-        return forces
+        return np.array(self.own_reactions[k]())  # ``Integrator.reactions`` leaves the joint out
 
     def _march_compiled(self, times, forces):
         """Compiled steps (``junction_march.group_steps``) to ``times`` until done or stopped, the

@@ -39,7 +39,7 @@ def increment(prob, refactor):
     if step is None:
         return float("nan")
     prob.newton_step = step
-    return float(np.max(np.abs(step)))
+    return float(np.max(np.abs(step), initial=0.0))  # 0: a line with no unknowns
 
 
 def factors_current(prob):

@@ -275,6 +275,27 @@ class LineSystem:
         """Load residual rows (N, 3) [N] at state X (inertia not included)."""
         return self.evaluate(self.state(X, V, A, t), jacobian=False)[0]
 
+    @property
+    def points_at_ends(self):
+        """Whether a node load (a point) rides on the fairlead or the anchor vertex."""
+        return any(np.isin(self.fem.end_dofs, load.vertices).any()
+                   for load in self.loads if getattr(load, "rule", "full") == "node")
+
+    def end_point_loads(self, X, V=None, A=None, t=0.0):
+        """The node loads' forces [N] at the fairlead and the anchor vertex (2, 3), zero where none
+        rides there: a point at a free end (or a run's junction end) rides on the line's end vertex,
+        and the line's own force there leaves its load out (docs/outputs.md)."""
+        forces = np.zeros((2, 3))
+        for load in self.loads:
+            if getattr(load, "rule", "full") != "node":
+                continue
+            at = load.vertices
+            pick = lambda Y: None if Y is None else np.ascontiguousarray(Y[at].T)  # noqa: E731
+            force = load.evaluate(State(pick(X), None, pick(V), None, pick(A), t), jacobian=False).force
+            for row, dof in enumerate((self.fem.fairlead_dof, self.fem.anchor_dof)):
+                forces[row] += force[:, at == dof].sum(axis=1)
+        return forces
+
     def tension_at(self, X, s, V=None):
         """Axial tension [N] at unstretched arc lengths s (n,), from the element holding each s."""
         dr = self.fem.derivative(X, s).T[:, :, None]

@@ -104,7 +104,8 @@ _simplest = simplify  # choose_seabed's argument of that name hides it
 
 
 def choose_seabed(seabed, lines, simplify=True):
-    """The seabed model a scene with ``lines`` uses, and one note (str) saying which and why.
+    """The seabed model a scene with ``lines`` uses, and one note (str) saying which and why (None
+    for a plane: it is used as given, and ``describe`` says what it is).
 
     A plane is kept as given. With ``simplify``, a grid or mesh that is
     level or planar within 1e-9 of its extent becomes that Horizontal or Plane
@@ -115,7 +116,7 @@ def choose_seabed(seabed, lines, simplify=True):
     model as read, untested (cost studies).
     """
     if isinstance(seabed, Plane):
-        return seabed, f"seabed: {seabed.describe()}"
+        return seabed, None
     if not simplify:
         return seabed, (f"seabed: {seabed.describe()}, kept as read (simplify = false: "
                         "not tested for flatness, general projection)")

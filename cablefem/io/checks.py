@@ -196,7 +196,8 @@ def peak_chord_strain(line, motion):
     The displacement is S(t) d(t) with the ramp S in [0, 1]: every displacement the motion
     reaches lies in the convex hull of 0 and its unramped extremes, and the distance from the
     anchor, a convex function, is largest at one of those: o +- A (harmonic), the point of the
-    circle around o farthest from the anchor (circular), a row (table)."""
+    circle around o farthest from the anchor (circular), a sample of the table's motion (its rows
+    and seven points between each two: ``table_samples``)."""
     chord = line.fairlead - line.anchor
     candidates, times = [np.zeros(3)], [None]
     offset = np.asarray(motion.offset, dtype=float)
@@ -216,11 +217,24 @@ def peak_chord_strain(line, motion):
         candidates.append(farthest)
         times.append(None)
     elif motion.kind == "table":
-        candidates += list(np.asarray(motion.positions, dtype=float))
-        times += [float(t) for t in motion.times]
+        at, positions = table_samples(motion)[:2]
+        candidates += list(positions)
+        times += [float(t) for t in at]
     strains = [float(np.linalg.norm(chord + d)) / line.unstretched_length - 1.0 for d in candidates]
     k = int(np.argmax(strains))
     return strains[k], candidates[k], times[k]
+
+
+def table_samples(motion, pieces=8):
+    """Times (m,) [s] and a table motion's positions, velocities and accelerations (m, 3) (its
+    spline's or its straight lines', ``cablefem.model.motion.table_kinematics``) at its rows and
+    ``pieces`` - 1 points between each two."""
+    from cablefem.model.motion import table_kinematics
+
+    times = np.asarray(motion.times, dtype=float)
+    with np.errstate(over="ignore", invalid="ignore"):
+        at = np.append((times[:-1, None] + np.diff(times)[:, None] * np.arange(pieces) / pieces).ravel(), times[-1])
+        return (at, *table_kinematics(motion, at))
 
 
 def _check_pace(scene, motion):
@@ -228,9 +242,10 @@ def _check_pace(scene, motion):
     (upper bounds of the ramped motion, within a factor of a few of its peaks)."""
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
         if motion.kind == "table":
-            steps = np.diff(np.asarray(motion.positions, dtype=float), axis=0)
-            speed = float(np.max(np.linalg.norm(steps, axis=1) / np.diff(motion.times)))
-            acceleration, reach, key = 0.0, float(np.max(np.linalg.norm(motion.positions, axis=1))), "motion.file"
+            _, positions, velocities, accelerations = table_samples(motion)
+            speed, acceleration, reach = (float(np.max(np.linalg.norm(x, axis=1)))
+                                          for x in (velocities, accelerations, positions))
+            key = "motion.file"
         else:
             size = float(np.linalg.norm(motion.amplitude)) if motion.kind == "harmonic" else motion.radius
             omega = 2.0 * math.pi / motion.period if motion.period > 0 else math.inf

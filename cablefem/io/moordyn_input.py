@@ -223,7 +223,8 @@ def _build(path, text, simplify=True):
     solver = Solver(duration=options["tmax"]) if "tmax" in options else Solver()
     if "tmax" in options:
         keys["solver.duration"] = (path, _at(options_rows["tmax"], "OPTIONS.TMax"))
-    notes.append(seabed_note)
+    if seabed_note is not None:  # a plane is used as given
+        notes.append(seabed_note)
     if any(point.kind == "coupled" and point.body is None for point in scene_points.values()):
         notes.append(NO_MOTION_NOTE)
     if any(body.kind == "coupled" for body in scene_bodies.values()):

@@ -285,9 +285,20 @@ def deferred_signals(reraise=True):
 
 
 def write_json(path, data):
-    """Write ``data`` as JSON to ``path`` atomically (a temporary file renamed into place), its
-    folder made if missing; OutputError if it cannot be written."""
-    from cablefem.io.output import prepare_file, write_atomic
-
+    """Write ``data`` as JSON (``tidy``) to ``path`` atomically (a temporary file renamed into place),
+    its folder made if missing; OutputError if it cannot be written."""
     prepare_file(path)
-    write_atomic(path, json.dumps(data, indent=1))
+    write_atomic(path, json.dumps(tidy(data), indent=1))
+
+
+def tidy(value):
+    """``value`` (a float, or lists, tuples and dicts of them) with every float in its shortest form
+    to 15 significant digits, which a double holds exactly (a time summed from steps, 29.310000000000002,
+    is 29.31; a computed force loses nothing above 1e-15 of itself), and no negative zero."""
+    if isinstance(value, float):
+        return float(f"{value:.15g}") + 0.0
+    if isinstance(value, dict):
+        return {key: tidy(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [tidy(item) for item in value]
+    return value

@@ -12,6 +12,12 @@ from cablefem.io.toml_scene import TOP_LEVEL_KEYS, parse_toml, read_toml_scene
 #: file extensions read as MoorDyn input files; anything else is tried as TOML first
 MOORDYN_EXTENSIONS = (".dat", ".txt", ".inp", ".in", ".moordyn")
 
+#: files that are never scenes: what a scene refers to (seabeds, motion tables) or a run writes
+NOT_SCENES = {**dict.fromkeys((".vtu", ".vtk", ".vtp", ".stl", ".obj", ".ply", ".msh", ".xyz"),
+                              "a mesh or point file: a scene names it in [seabed] file"),
+              **dict.fromkeys((".csv", ".parquet"), "a table: a scene names a motion table in [motion] file"),
+              **dict.fromkeys((".pvd", ".json", ".png", ".gif"), "an output of cablefem")}
+
 
 def load_scene(path):
     """The Scene of a TOML scene or MoorDyn v2 input file at ``path`` (str or path-like).
@@ -42,8 +48,14 @@ def _read_scene(path):
     if not os.access(path, os.R_OK):
         raise InputError("file not readable")
     extension = os.path.splitext(path)[1].lower()
+    if extension in NOT_SCENES:
+        raise InputError(f"not a scene ({NOT_SCENES[extension]}); a scene is a TOML file or a MoorDyn v2 "
+                         "input file (docs/scene.md)")
     if extension == ".toml":
-        return read_toml_scene(path)
+        data = parse_toml(path)
+        if "base" in data and not any(key in data for key in TOP_LEVEL_KEYS):
+            raise InputError("a sweep file, not a scene: run it with `cablefem sweep` (docs/sweep.md)")
+        return read_toml_scene(path, data)
     if extension in MOORDYN_EXTENSIONS:
         return read_moordyn(path)
     try:

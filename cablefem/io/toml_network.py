@@ -27,7 +27,7 @@ BODY_KEYS = {"kind": v.choice(("fixed", "coupled", "free")), "position": _COORDI
              "motion": v.table}
 BODY_MOTION_KINDS = ("fixed", "harmonic", "table")
 BODY_MOTION_KEYS = {"fixed": (), "harmonic": ("amplitude", "period", "phase_deg", "offset", "ramp"),
-                    "table": ("file", "ramp")}
+                    "table": ("file", "ramp", "interpolation")}
 #: OpenFAST's platform motion channels, in the order of a body's six components
 OPENFAST_COLUMNS = ("PtfmSurge", "PtfmSway", "PtfmHeave", "PtfmRoll", "PtfmPitch", "PtfmYaw")
 
@@ -122,7 +122,8 @@ def _body_motion(raw, prefix, folder):
     kind = v.choice(BODY_MOTION_KINDS)(raw["kind"], f"{prefix}.kind")
     elsewhere = {key: f"does not apply to motion kind '{kind}'" for keys in BODY_MOTION_KEYS.values() for key in keys}
     converters = {"kind": v.text, "amplitude": _six, "period": v.positive, "phase_deg": _six, "offset": _six,
-                  "ramp": v.non_negative, "file": v.text}
+                  "ramp": v.non_negative, "file": v.text,
+                  "interpolation": v.choice(("spline", "linear"))}
     converters = {key: converters[key] for key in ("kind",) + BODY_MOTION_KEYS[kind]}
     required = {"fixed": (), "harmonic": ("amplitude", "period"), "table": ("file",)}[kind]
     values = v.pick(raw, prefix, converters, required=required, elsewhere=elsewhere)
@@ -136,7 +137,7 @@ def _body_motion(raw, prefix, folder):
     file = v.existing_file(values["file"], f"{prefix}.file", folder)
     times, motions = read_six_table(file, f"{prefix}.file")
     return Motion("table", offset=np.zeros(6), ramp=values.get("ramp", 0.0), times=times,
-                  positions=motions * degrees)
+                  positions=motions * degrees, interpolation=values.get("interpolation", "spline"))
 
 
 def read_six_table(path, key):

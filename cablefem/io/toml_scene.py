@@ -45,10 +45,12 @@ SEABED_SHAPE_KEYS = {"horizontal": ("depth",),
 FRICTION_MODELS = ("none", "isotropic", "anisotropic")
 MOTION_KINDS = ("fixed", "harmonic", "circular", "table")
 MOTION_KEYS = {"fixed": (), "harmonic": ("amplitude", "period", "offset", "ramp"),
-               "circular": ("radius", "period", "plane", "offset", "ramp"), "table": ("file", "ramp")}
+               "circular": ("radius", "period", "plane", "offset", "ramp"),
+               "table": ("file", "ramp", "interpolation")}
 MOTION_REQUIRED = {"fixed": (), "harmonic": ("amplitude", "period"),
                    "circular": ("radius", "period"), "table": ("file",)}
 MOTION_PLANES = ("xy", "xz", "yz", "yx", "zx", "zy")  # sin along the first axis, cos along the second
+TABLE_INTERPOLATIONS = ("spline", "linear")  # cablefem.model.motion
 ASSEMBLY_PATHS = ("kernel", "forms")
 NEWTON_MODES = ("auto", "full", "modified")
 
@@ -146,7 +148,8 @@ def read_toml_scene(path, data=None):
     motion = _motion(data["motion"], folder) if "motion" in data else Motion()
     solver = replace(base.solver if base else Solver(), **_section(data, "solver", SOLVER_KEYS))
     output = replace(Output(), **_section(data, "output", OUTPUT_KEYS))
-    notes.append(seabed_note)
+    if seabed_note is not None:  # a plane is used as given
+        notes.append(seabed_note)
     load_settings = {spec.section: v.pick(v.table(data[spec.section], spec.section), spec.section, spec.keys,
                                           required=spec.required)
                      for spec in catalog.CATALOG if spec.section and spec.section in data}
@@ -321,7 +324,8 @@ def _motion(raw, folder):
                  for keys in MOTION_KEYS.values() for key in keys}
     converters = {"kind": v.text, "amplitude": v.limited(v.vector3, "length"), "period": v.positive,
                   "offset": v.limited(v.vector3, "length"), "ramp": v.non_negative,
-                  "radius": _LENGTH, "plane": v.choice(MOTION_PLANES), "file": v.text}
+                  "radius": _LENGTH, "plane": v.choice(MOTION_PLANES), "file": v.text,
+                  "interpolation": v.choice(TABLE_INTERPOLATIONS)}
     converters = {key: converters[key] for key in ("kind",) + MOTION_KEYS[kind]}
     values = v.pick(raw, "motion", converters, required=MOTION_REQUIRED[kind], elsewhere=elsewhere)
     if kind == "table":

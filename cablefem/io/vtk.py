@@ -9,15 +9,16 @@ ParaView and pyvista open, listing every complete frame, and no partial
 """
 
 import os
+import re
 import time
 from xml.sax.saxutils import quoteattr
 
 import meshio
 import numpy as np
 
-from cablefem.io.output import GrowingFile, inside, replace_into, write_atomic
+from cablefem.io.output import GrowingFile, inside, replace_into, tidy, write_atomic
 
-__all__ = ["TimeSeriesWriter", "polyline_mesh", "read_collection", "write_atomic"]
+__all__ = ["TimeSeriesWriter", "polyline_mesh", "read_collection", "series_files", "write_atomic"]
 
 
 def polyline_mesh(lines, points=(), bodies=()):
@@ -103,7 +104,7 @@ class TimeSeriesWriter:
         file_name = f"{self.name}_{len(self.frames):05d}.vtu"
         replace_into(lambda tmp: meshio.write(tmp, mesh, file_format="vtu"), inside(self.folder, file_name))
         self.frames.append((float(t), file_name))
-        self._rows += (f'    <DataSet timestep="{float(t)!r}" group="" part="0" '
+        self._rows += (f'    <DataSet timestep="{tidy(float(t))!r}" group="" part="0" '
                        f'file={quoteattr(file_name)}/>\n').encode("utf-8")
         if len(self.frames) <= self.every_frame or time.monotonic() - self._written >= self.refresh:
             self._write_collection()
@@ -117,6 +118,15 @@ class TimeSeriesWriter:
         self._collection.write([self.HEAD, bytes(self._rows), self.TAIL])
         self.listed = len(self.frames)
         self._written = time.monotonic()
+
+
+def series_files(folder, name):
+    """The files of the time series ``name`` in ``folder``, as ``TimeSeriesWriter`` names them: the
+    collection ``<name>.pvd`` and the frames ``<name>_NNNNN.vtu`` (nothing else that starts so)."""
+    frame = re.compile(re.escape(name) + r"_[0-9]{5,}\.vtu")
+    with os.scandir(folder) as entries:
+        return sorted(entry.path for entry in entries if not entry.is_dir(follow_symlinks=False)
+                      and (entry.name == f"{name}.pvd" or frame.fullmatch(entry.name)))
 
 
 def read_collection(path):

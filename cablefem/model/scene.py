@@ -55,8 +55,9 @@ class Motion:
 
     kind: "fixed" | "harmonic" | "circular" | "table". Harmonic: amplitude (3,) [m],
     period [s], offset (3,) [m]. Circular: radius [m], period [s], plane ("xy", "xz",
-    "yz"). Table: times (k,) [s] and positions (k, 3) [m]. ``ramp`` [s] scales the whole
-    displacement by the smoothstep 3u^2 - 2u^3, u = t / ramp.
+    "yz"). Table: times (k,) [s] and positions (k, 3) [m], joined by a smooth spline or, with
+    ``interpolation = "linear"``, by straight lines (``cablefem.model.motion``). ``ramp`` [s] scales
+    the whole displacement by the smoothstep 3u^2 - 2u^3, u = t / ramp.
     """
 
     kind: str = "fixed"
@@ -69,14 +70,16 @@ class Motion:
     times: np.ndarray | None = None
     positions: np.ndarray | None = None
     phase: tuple = ()  # a body's harmonic motion: per component [rad]; empty: none
+    interpolation: str = "spline"  # table: "spline" | "linear"
 
 
 @dataclass(frozen=True)
 class Solver:
     """Solver settings: integrator ("bdf2" | "generalized-alpha"), time step [s], duration [s],
     relative residual tolerance, Newton iteration cap, the assembly path ("kernel" or
-    "forms"; "numpy", the statics of ``cablefem static`` on a small scene), the spectral radius at infinite frequency of generalised-alpha, and whether
-    statics fits a mesh vertex to the touchdown point (``cablefem.statics.touchdown.solve_line``),
+    "forms"; "numpy", the statics of ``cablefem static`` on a small scene), the spectral radius at infinite frequency of generalised-alpha, whether
+    the statics of ``cablefem static`` and of a run's start fit a mesh vertex to the touchdown point
+    (``cablefem.statics.touchdown.solve_line``; a run then runs on that mesh),
     Newton in dynamics ("full", "modified": the tangent's LU factors kept across iterations
     and steps, or "auto": full with the compiled kernel, modified without), and the
     adaptive step control of BDF2 (dt is then the largest step; error_tolerance is the
@@ -89,7 +92,7 @@ class Solver:
     max_iterations: int = 50
     assembly: str = "kernel"
     rho_inf: float = 0.5
-    fit_touchdown: bool = True
+    fit_touchdown: bool = False
     newton: str = "auto"
     adaptive: bool = False
     error_tolerance: float = 3e-4

@@ -51,12 +51,17 @@ class LineReport:
 
 
 def end_forces(system, X, inertia=None):
-    """Forces (3,) the line exerts on its fairlead and anchor [N] at state X (N, 3);
-    ``inertia`` (N, 3) adds the M a rows in dynamics."""
+    """Forces (3,) the line exerts on its fairlead and anchor [N] at state X (N, 3): minus the
+    residual rows there, less the load of a point riding on that end (``end_point_loads``: the
+    line's own force, as on a prescribed end); ``inertia`` (N, 3) adds the M a rows in dynamics."""
     R = system.residual(X)
     if inertia is not None:
         R = R + inertia
-    return -R[system.fem.fairlead_dof], -R[system.fem.anchor_dof]
+    fairlead, anchor = -R[system.fem.fairlead_dof], -R[system.fem.anchor_dof]
+    if system.points_at_ends:
+        points = system.end_point_loads(X)
+        fairlead, anchor = fairlead - points[0], anchor - points[1]
+    return fairlead, anchor
 
 
 def touchdown(system, X, samples_per_element=16):
@@ -105,16 +110,32 @@ def report(system, X, pretension=None):
 
 
 def node_tension(system, X, anchor_tension, fairlead_tension):
-    """Tension [N] at the vertices (n,), anchor first: EA max(|r'| - 1, 0) averaged over the two
-    elements that meet at an interior vertex (r' jumps there), the reactions' magnitudes at the ends."""
-    nodes = system.fem.mesh.p[0]
-    inset = 1e-9 * np.diff(nodes)
-    sides = [nodes[:-1] + inset, nodes[1:] - inset]  # each element's left and right end
-    values = [system.tension_at(X, s) for s in sides]
-    tension = np.empty(len(nodes))
-    tension[1:-1] = 0.5 * (values[1][:-1] + values[0][1:])
-    tension[0], tension[-1] = anchor_tension, fairlead_tension
-    return tension
+    """Tension [N] at the vertices (n,), anchor first (``LineSampler.tension``): the tension law's T
+    averaged over the two elements that meet at an interior vertex (r' jumps there), the end
+    tensions given at the ends."""
+    return LineSampler(system, system.fem.mesh.p[0]).tension(X, ends=(fairlead_tension, anchor_tension))
+
+
+def tension_law(system, element):
+    """The line's tension law (its ``tension`` load: T = EA (e + beta de/dt), no compression) at
+    points of the elements ``element`` (n,): the load with its per-element values taken there."""
+    from copy import copy
+
+    law = copy(system.tension)
+    for name in ("EA", "beta", "slack_damping"):  # per element (nel, 1): the points' elements
+        if getattr(law, name, None) is not None:
+            setattr(law, name, getattr(law, name)[element])
+    law.compression = False
+    return law
+
+
+def point_tension(law, dr, dv=None):
+    """Tension [N] (n,) of a ``tension_law`` at its points with dr/ds and dv/ds (n, 3)."""
+    from cablefem.loads import State
+
+    state = State(None, dr.T[:, :, None], dv=None if dv is None else dv.T[:, :, None])
+    flux = law.evaluate(state, jacobian=False).flux[:, :, 0]
+    return np.einsum("cn,nc->n", flux, dr) / np.linalg.norm(dr, axis=1)
 
 
 def embedment(system, X, anchor_force):
@@ -175,14 +196,24 @@ def sample_arc_lengths(system, per_element=None):
 
 class LineSampler:
     """The basis of one line's FEM at fixed arc lengths s (n,) [m] (default: each element split
-    into ``order`` pieces), evaluated once: frames of a run sample the same points every time."""
+    into ``order`` pieces), evaluated once: frames of a run sample the same points every time.
+    At an interior vertex, where r' jumps, the two elements that meet there are sampled too (just
+    inside each, 1e-9 of an element from the vertex), and their values averaged."""
 
     def __init__(self, system, s=None):
         fem = system.fem
         self.s = sample_arc_lengths(system) if s is None else np.asarray(s, dtype=float)
-        self.values, self.gradients = fem._local_basis(self.s)  # (n, nloc) each
-        self.element = fem._locate(self.s)[0]
-        self.dofs = fem.element_dofs[self.element]  # (n, nloc)
+        self.values, self.gradients, self.element, self.dofs = _basis(fem, self.s)
+        nodes = fem.mesh.p[0]
+        self.anchor, self.fairlead = self.s == nodes[0], self.s == nodes[-1]
+        self.vertices = np.flatnonzero(np.isin(self.s, nodes[1:-1]))
+        inset = 1e-9 * float(np.min(np.diff(nodes)))
+        at = self.s[self.vertices]
+        left, right = _basis(fem, at - inset), _basis(fem, at + inset)
+        # r' of every point in one product: the points, then the vertices from the left, from the right
+        self.stacked = (np.concatenate([self.gradients, left[1], right[1]]),
+                        np.concatenate([self.dofs, left[3], right[3]]))
+        self.law = tension_law(system, np.concatenate([self.element, left[2], right[2]]))
 
     def evaluate(self, X):
         """X (N, 3) at the sample points, (n, 3)."""
@@ -192,22 +223,57 @@ class LineSampler:
         """dX/ds (N, 3) at the sample points, (n, 3)."""
         return np.einsum("nl,nlc->nc", self.gradients, X[self.dofs])
 
+    def axial(self, X, V=None, ends=None):
+        """Axial strain |r'| - 1 and tension [N] (n,) each at the sample points: inside an element
+        its own (the tension from the line's law, ``tension_law``), at an interior vertex the mean of
+        the two elements', and at the ends the line's tension there, ``ends`` = (fairlead, anchor):
+        forces (3,) or their magnitudes (without, the law's there)."""
+        dr = self._sides(X)
+        strain = self._points(np.linalg.norm(dr, axis=1) - 1.0)
+        tension = self._points(point_tension(self.law, dr, None if V is None else self._sides(V)))
+        if ends is not None:
+            tension[self.fairlead], tension[self.anchor] = (float(np.linalg.norm(end)) for end in ends)
+        return strain, tension
 
-def line_fields(system, X, V=None, s=None, sampler=None):
-    """Point data of a line for a VTK frame: positions and, per point, tension [N], strain,
-    velocity [m/s], seabed gap d_G [m] and contact force per unit length [N/m]; at ``s`` or at
-    a ``LineSampler``'s points."""
+    def tension(self, X, V=None, ends=None):
+        """Tension [N] (n,) at the sample points (``axial``)."""
+        return self.axial(X, V, ends)[1]
+
+    def _sides(self, X):
+        """dX/ds at the points and at the interior vertices from either side, (n + 2 m, 3)."""
+        gradients, dofs = self.stacked
+        return np.einsum("nl,nlc->nc", gradients, X[dofs])
+
+    def _points(self, values):
+        """Values at the points (n,) from ``_sides``' rows: at an interior vertex the mean of its two."""
+        n, m = len(self.s), len(self.vertices)
+        out = values[:n].copy()
+        if m:
+            out[self.vertices] = 0.5 * (values[n:n + m] + values[n + m:])
+        return out
+
+
+def _basis(fem, s):
+    """Basis values and s-derivatives (n, nloc), element (n,) and its dofs (n, nloc) at arc lengths s."""
+    values, gradients = fem._local_basis(s)
+    element = fem._locate(s)[0]
+    return values, gradients, element, fem.element_dofs[element]
+
+
+def line_fields(system, X, V=None, s=None, sampler=None, ends=None):
+    """Point data of a line for a VTK frame: positions and, per point, tension [N]
+    (``LineSampler.tension``; ``ends``: the line's (fairlead, anchor) forces, whose magnitudes are
+    the tension at its ends), strain, velocity [m/s], seabed gap d_G [m] and contact force per unit
+    length [N/m]; at ``s`` or at a ``LineSampler``'s points."""
     sampler = sampler or LineSampler(system, s)
     element = sampler.element
     points = sampler.evaluate(X)
-    stretch = np.linalg.norm(sampler.derivative(X), axis=1)
-    EA = system.props["EA"][element]
     proj = system.seabed.project(points)
     stiffness = system.contact.stiffness[element, 0] if system.has("contact") else 0.0 * element
     contact = (stiffness * np.maximum(-proj.gap, 0.0))[:, None] * proj.direction
     velocity = np.zeros_like(points) if V is None else sampler.evaluate(V)
-    fields = {"points": points, "tension": EA * np.maximum(stretch - 1.0, 0.0),
-              "strain": stretch - 1.0, "velocity": velocity, "seabed_gap": proj.gap,
+    strain, tension = sampler.axial(X, V, ends)
+    fields = {"points": points, "tension": tension, "strain": strain, "velocity": velocity, "seabed_gap": proj.gap,
               "contact_force": contact}
     fields.update(history_fields(system, element))
     return fields

@@ -10,7 +10,9 @@ whole rows computed so far and a summary saying where it stopped; one killed
 outright leaves all of that but the summary.
 """
 
+import contextlib
 import json
+import os
 import sys
 import time
 
@@ -21,16 +23,18 @@ from cablefem.dynamics.registry import INTEGRATORS
 from cablefem.dynamics.schemes import integrator_options
 from cablefem.dynamics.step_control import StepControl
 from cablefem.errors import ConvergenceError, InputError, OutputError
-from cablefem.fem.system import build_system
 from cablefem.io.checks import check_names, check_run
 from cablefem.io.output import (RowsFile, deferred_signals, failure as write_failure, inside, prepare_folder,
-                                remove_partials, write_atomic)
-from cablefem.io.vtk import TimeSeriesWriter, polyline_mesh
-from cablefem.model.network import anchor_path, boundary_path, dynamic_lines
+                                remove_partials, tidy, write_atomic)
+from cablefem.io.vtk import TimeSeriesWriter, polyline_mesh, series_files
+from cablefem.model.network import anchor_path, boundary_path
 from cablefem.runs.network_output import NetworkRows, body_reference, frame_marks
 from cablefem.runs.results import LineSampler, line_fields
-from cablefem.statics.scene import start_states
+from cablefem.statics.scene import run_start
 
+
+#: the files every run writes in its folder, beside its frames and their .pvd
+RUN_FILES = ("seabed.vtu", "tensions.csv", "summary.json")
 
 #: largest rho_inf of generalised-alpha that stayed bounded on a stiff taut line at omega dt >> 1
 SAFE_RHO_INF = 0.5
@@ -81,8 +85,8 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
     duration = float(solver.duration if duration is None else duration)
     dt = float(solver.dt if dt is None else dt)
     out_dir = prepare_folder(out_dir or scene.output.dir)
-    remove_partials(out_dir, (f"{scene.name}_", f"{scene.name}.pvd", "seabed.vtu", "tensions.csv",
-                              "summary.json"))
+    remove_partials(out_dir, (f"{scene.name}_", f"{scene.name}.pvd", *RUN_FILES))
+    remove_earlier_run(out_dir, scene.name)
     start = time.perf_counter()
     summary = {"scene": scene.name, "seabed": scene.seabed.describe(),
                "notes": list(scene.notes) + setting_warnings(scene, dt), "dt": dt, "duration": duration}
@@ -97,8 +101,7 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
             raise write_failure(error, seabed_vtu) from None
         integrator_class = INTEGRATORS[solver.integrator]
         options = integrator_options(solver)
-        systems = [build_system(scene, line) for line in dynamic_lines(scene)]
-        states, summary["static_newton_iterations"] = start_states(scene, systems=systems)
+        systems, states, summary["static_newton_iterations"] = run_start(scene)
         integrators += [integrator_class(system, X0, boundary_path(scene, line), dt=dt,
                                          anchor=anchor_path(scene, line), **options)
                         for system, line, X0 in zip(systems, scene.lines, states)]
@@ -117,6 +120,18 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
         _finish(summary, status, integrators, outputs, step_control, tracker, start, out_dir,
                 reraise=status == "completed")
     return summary
+
+
+def remove_earlier_run(out_dir, name):
+    """Remove what an earlier run of a scene called ``name`` wrote in ``out_dir`` (its frames and
+    .pvd, the pictures ``cablefem render`` made of them there, and the folder's seabed.vtu,
+    tensions.csv and summary.json, which every run writes), so that the folder holds this run's
+    outputs only; no other file is touched."""
+    from cablefem.post import picture_files
+
+    for path in series_files(out_dir, name) + picture_files(out_dir, name) + [inside(out_dir, f) for f in RUN_FILES]:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(path)
 
 
 def _advance(scene, integrators, outputs, step_control, tracker, duration, dt):
@@ -138,8 +153,9 @@ def _advance(scene, integrators, outputs, step_control, tracker, duration, dt):
         t = rows[-1][0]
         if t >= frame * every - near:
             bodies = [(body_reference(scene.bodies[name], t), rows) for name, rows in body_marks]
-            frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V, sampler=sampler)
-                                           for i, sampler in zip(integrators, samplers)], marks, bodies))
+            frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V, sampler=sampler, ends=ends)
+                                           for i, sampler, ends in zip(integrators, samplers, rows[-1][1])],
+                                          marks, bodies))
             frame = int(np.floor((t + near) / every)) + 1
         return t
 
@@ -185,7 +201,7 @@ def _finish(summary, status, integrators, outputs, step_control, tracker, start,
             if step_control.adaptive else None})
         summary.setdefault("static_newton_iterations", 0)
         try:
-            write_atomic(inside(out_dir, "summary.json"), json.dumps(summary, indent=1))
+            write_atomic(inside(out_dir, "summary.json"), json.dumps(tidy(summary), indent=1))
         except OutputError as error:
             errors.append(error)
     if errors and reraise:
@@ -214,7 +230,7 @@ def _row(t, forces, extra=()):
     values = [t]
     for fairlead, anchor in forces:
         values += [np.linalg.norm(fairlead), np.linalg.norm(anchor), *fairlead]
-    return [f"{x:.10g}" for x in [*values, *extra]]
+    return [f"{x + 0.0:.10g}" for x in [*values, *extra]]  # + 0.0: no "-0"
 
 
 def _columns(scene, network=None):

@@ -138,6 +138,8 @@ def scale_free_residual(system, X):
     """The residual at X (N, 3) in the tangent's own units: the largest entry of the Newton step
     K^-1 G [m] over the line's length. A force residual relative to the weight depends on the
     stiffnesses (a position known to round-off eps |X| leaves forces eps |X| EA / h); this does not."""
+    if system.fem.free_dofs.size == 0:  # a line of one element between prescribed ends: nothing to solve
+        return 0.0
     linear = _Linearisation.of(system)
     residual, tangent = linear.evaluate(X)
     step = linear.solve(tangent, residual)

@@ -1,9 +1,13 @@
 """The statics of a whole scene: every line's equilibrium and its network's coupling unknowns, as
 ``cablefem static`` reports them and as a run starts from them.
 
-A line alone is solved with its mesh fitted to the touchdown (``cablefem.statics.touchdown``), a line in
-soil along its pretension path (``cablefem.statics.pretension``), the strings that meet at junctions or
-free bodies together (``cablefem.statics.network``).
+One function solves both (``static_lines``): ``cablefem static`` solves the scene as written, a run
+solves it with the prescribed ends where their paths put them at t = 0 (the same problem when the
+motion's displacement is zero there) and starts from that state on that mesh. A line alone is
+solved on its mesh as given or, with ``[solver] fit_touchdown``, on a mesh fitted to its touchdown
+(``cablefem.statics.touchdown``); a line in soil along its pretension path
+(``cablefem.statics.pretension``); the strings that meet at junctions or free bodies together
+(``cablefem.statics.network``).
 """
 
 import copy
@@ -11,7 +15,6 @@ from dataclasses import replace
 
 from cablefem.fem.system import build_system
 from cablefem.model.network import anchor_path, boundary_path, check_no_coupling, coupling
-from cablefem.statics.solve import solve_static
 
 
 #: ``cablefem static`` solves a single line of at most this many nodes on the numpy path: loading
@@ -31,8 +34,6 @@ def numpy_statics(scene):
     sparse LU and the seabed's numpy projection, which gives the compiled path's numbers to
     round-off (tests/test_startup.py) without loading a compiled kernel; any other scene as it is
     (docs/outputs.md, ``cablefem static``)."""
-    from cablefem.model.network import coupling
-
     nodes = sum(line.order * sum(seg.elements for seg in line.segments) + 1 for line in scene.lines)
     if (len(scene.lines) > 1 or nodes > NUMPY_STATICS_NODES or "soil" in scene.load_settings
             or scene.solver.assembly != "kernel"
@@ -43,6 +44,14 @@ def numpy_statics(scene):
         seabed = copy.copy(seabed)
         seabed.compiled = False
     return replace(scene, seabed=seabed, solver=replace(scene.solver, assembly="numpy"))
+
+
+def warm_imports():
+    """Import the modules a static solve imports on first use (scipy.optimize among them, ~0.4 s
+    in a fresh process), so that timing the solve times the solve."""
+    import cablefem.loads.friction  # noqa: F401 (the contact load's builder)
+    import cablefem.runs.results  # noqa: F401
+    import cablefem.statics.touchdown  # noqa: F401
 
 
 def solve_scene_static(scene):
@@ -56,83 +65,97 @@ def static_network(scene):
     (list of LineReport, Newton iterations, results per line (``StaticResult``), network) with
     network the ``NetworkStatics`` of the junctions and free bodies (None without any)."""
     from cablefem.runs.results import report
+
+    systems, results, iterations, network = static_lines(scene)
+    soil = "soil" in scene.load_settings
+    reports = [report(system, result.X, result if soil else None) for system, result in zip(systems, results)]
+    return reports, iterations, results, network
+
+
+def static_lines(scene, t0=None, systems=None):
+    """Static equilibrium of every line of a scene: (static ``LineSystem`` per line, ``StaticResult``
+    per line, Newton iterations, network), network the ``NetworkStatics`` of the junctions and free
+    bodies (None without any). ``t0`` [s]: the lines' prescribed ends where their paths put them at
+    t0 (None: where the scene has them). The mesh is the scene's, fitted to the touchdown with
+    ``[solver] fit_touchdown``, or the FEM of ``systems`` (other systems of the same lines) when given."""
+    from cablefem.statics.newton import StaticResult, scale_free_residual
     from cablefem.statics.touchdown import solve_line
 
-    def static_system(line):
-        from cablefem.fem.system import build_system  # the run module only for networks and soil
-
-        return build_system(scene, line, dynamic=False)
-
+    solver = scene.solver
     network, coupled = None, set()
-    if scene.points or scene.bodies:
+    if (scene.points or scene.bodies) and any(coupling(scene.lines, scene.points, scene.bodies)):
         from cablefem.statics.network import solve_network
-        from cablefem.model.network import coupling
 
-        if any(coupling(scene.lines, scene.points, scene.bodies)):
-            network = solve_network(scene, static_system,
-                                    tolerance=scene.solver.tolerance, max_iterations=scene.solver.max_iterations)
-            coupled = {k for k, X in enumerate(network.states) if X is not None}
-    reports, results, iterations = [], [], 0 if network is None else network.iterations
+        network = solve_network(scene, lambda line: build_system(scene, line, dynamic=False),
+                                tolerance=solver.tolerance, max_iterations=solver.max_iterations)
+        coupled = {k for k, X in enumerate(network.states) if X is not None}
+    statics, results, iterations = [], [], 0 if network is None else network.iterations
     for k, line in enumerate(scene.lines):
         if k in coupled:
-            from cablefem.statics.newton import StaticResult, scale_free_residual
-
             system, X = network.systems[k], network.states[k]
             result = StaticResult(X, 0, network.residual, strategy="network",
                                   increment=scale_free_residual(system, X))
         else:
+            if t0 is not None:
+                anchor = anchor_path(scene, line)
+                line = line.with_ends(line.anchor if anchor is None else anchor(t0)[0],
+                                      boundary_path(scene, line)(t0)[0])
+            fem = None if systems is None else systems[k].fem
             if "soil" in scene.load_settings:
                 from cablefem.statics.pretension import solve_pretension
 
-                system = static_system(line)
-                result = solve_pretension(system, scene.solver.tolerance, scene.solver.max_iterations)
+                system = build_system(scene, line, dynamic=False, fem=fem)
+                result = solve_pretension(system, solver.tolerance, solver.max_iterations)
             else:
                 system, result = solve_line(line, scene.seabed, scene.contact, scene.environment,
-                                            fit_touchdown=scene.solver.fit_touchdown,
-                                            tolerance=scene.solver.tolerance,
-                                            max_iterations=scene.solver.max_iterations,
-                                            assembly=scene.solver.assembly, sections=scene.load_settings)
+                                            fit_touchdown=solver.fit_touchdown and fem is None,
+                                            tolerance=solver.tolerance, max_iterations=solver.max_iterations,
+                                            assembly=solver.assembly, sections=scene.load_settings, fem=fem)
             iterations += result.iterations
-            X = result.X
+        statics.append(system)
         results.append(result)
-        reports.append(report(system, X, result if "soil" in scene.load_settings else None))
-    return reports, iterations, results, network
+    return statics, results, iterations, network
 
 
 def start_states(scene, t0=0.0, systems=None):
     """Static equilibrium of every line with its prescribed ends where their paths put them at t0
-    (a network's junctions solved with their strings: ``cablefem.statics.network``); ``systems``: the
-    lines' dynamic systems, whose FEM the static ones share and which start from the statics'
-    history of the points."""
+    (``static_lines``; a network's junctions solved with their strings): (states, Newton
+    iterations). ``systems``: the lines' dynamic systems, whose FEM the static ones share and which
+    start from the statics' history of the points."""
     check_no_coupling(scene)
-    network = None
-    if any(coupling(scene.lines, scene.points, scene.bodies)):
-        from cablefem.statics.network import solve_network
+    statics, results, iterations, _ = static_lines(scene, t0, systems)
+    if systems is not None:
+        for static, system in zip(statics, systems):
+            start_history(static, system)
+    return [result.X for result in results], iterations
 
-        network = solve_network(scene, lambda line: build_system(scene, line, dynamic=False),
-                                tolerance=scene.solver.tolerance,
-                                max_iterations=scene.solver.max_iterations)
-    states, iterations = [], 0 if network is None else network.iterations
-    for k, line in enumerate(scene.lines):
+
+def start_history(static, system):
+    """The dynamic ``system`` starts from the history of the points that its ``static`` system
+    (the same FEM) ended with."""
+    for rule, (old, new) in static.history.items():
+        system.history[rule][0][...] = old
+        system.history[rule][1][...] = old
+
+
+def run_start(scene, t0=0.0):
+    """A run's start: (dynamic ``LineSystem`` per line of ``dynamic_lines``, start state per line,
+    Newton iterations). Each line starts from ``static_lines``' equilibrium at t0 on the mesh its
+    statics solved (fitted to the touchdown with ``[solver] fit_touchdown``), from the history of
+    points its statics ended with; a string of a network on its own FEM (its junction ends are
+    unknowns in a run, held in the network's statics)."""
+    from cablefem.model.network import dynamic_lines
+
+    check_no_coupling(scene)
+    statics, results, iterations, network = static_lines(scene, t0)
+    systems = []
+    for k, (static, line) in enumerate(zip(statics, dynamic_lines(scene))):
         if network is not None and network.states[k] is not None:
-            static, X = network.systems[k], network.states[k]
+            system = build_system(scene, line)
         else:
-            anchor = anchor_path(scene, line)
-            moved = line.with_ends(line.anchor if anchor is None else anchor(t0)[0],
-                                   boundary_path(scene, line)(t0)[0])
-            fem = None if systems is None else systems[k].fem
-            static = build_system(scene, moved, dynamic=False, fem=fem)
-            if "soil" in scene.load_settings:  # a line in soil starts where its pretension path ends
-                from cablefem.statics.pretension import solve_pretension
-
-                result = solve_pretension(static, scene.solver.tolerance, scene.solver.max_iterations)
-            else:
-                result = solve_static(static, tolerance=scene.solver.tolerance,
-                                      max_iterations=scene.solver.max_iterations)
-            X, iterations = result.X, iterations + result.iterations
-        if systems is not None:
-            for rule, (old, new) in static.history.items():
-                systems[k].history[rule][0][...] = old
-                systems[k].history[rule][1][...] = old
-        states.append(X)
-    return states, iterations
+            if static.line.segments != line.segments:  # split at the touchdown
+                line = replace(line, segments=static.line.segments, joints=static.line.joints)
+            system = build_system(scene, line, fem=static.fem)
+        start_history(static, system)
+        systems.append(system)
+    return systems, [result.X for result in results], iterations

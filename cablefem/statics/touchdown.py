@@ -14,7 +14,7 @@ from cablefem.statics.solve import solve_static
 
 
 def solve_line(line, seabed, contact, environment, fit_touchdown=True, tolerance=1e-8,
-               max_iterations=50, assembly="kernel", max_fits=4, sections=None):
+               max_iterations=50, assembly="kernel", max_fits=4, sections=None, fem=None):
     """Static equilibrium of one line; returns (LineSystem, StaticResult).
 
     The solution has a jump of curvature at the touchdown point (straight on the seabed,
@@ -26,14 +26,15 @@ def solve_line(line, seabed, contact, environment, fit_touchdown=True, tolerance
     seabed's total reaction: on a frictionless plane the resting part carries exactly its own
     normal weight, so the reaction fixes the resting length, where the place at which the
     gap changes sign (tangent to the seabed there) is ill-conditioned. ``sections``: the scene's
-    tables of the catalog's loads (``Scene.load_settings``).
+    tables of the catalog's loads (``Scene.load_settings``); ``fem``: the ``LineFEM`` of another
+    system of the line as given, shared.
     """
     from cablefem.fem.system import LineSystem
 
-    def build(candidate):
-        return LineSystem(candidate, seabed, contact, environment, assembly=assembly, sections=sections)
+    def build(candidate, fem=None):
+        return LineSystem(candidate, seabed, contact, environment, assembly=assembly, sections=sections, fem=fem)
 
-    system = build(line)
+    system = build(line, fem)
     if fit_touchdown:
         system = _fit_slack(build, system)
     result = solve_static(system, tolerance=tolerance, max_iterations=max_iterations)

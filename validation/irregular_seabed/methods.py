@@ -89,7 +89,8 @@ def findings(by_method):
 
 def static_tension(seabed, elements, fairlead_x):
     """(fairlead tension [N], touchdown x [m]) of the line in static equilibrium with its
-    fairlead at (fairlead_x, 0, 0) [m], solved as ``cablefem static`` does (``solve_line``)."""
+    fairlead at (fairlead_x, 0, 0) [m], solved as ``cablefem static`` does with ``[solver]
+    fit_touchdown = true`` (``solve_line``)."""
     from cablefem.runs.results import report
     from cablefem.statics.touchdown import solve_line
 

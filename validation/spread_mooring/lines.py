@@ -92,7 +92,7 @@ def fem_line(anchor, fairlead, weight, EA=EA, order=ORDER, elements=ELEMENTS):
 
 
 def fitted_line(anchor, fairlead, weight, EA=EA, order=ORDER, elements=ELEMENTS):
-    """``solve_line`` (a mesh vertex fitted to the touchdown, what ``cablefem static`` runs) from its
+    """``solve_line`` (a mesh vertex fitted to the touchdown, ``cablefem static`` with ``fit_touchdown``) from its
     own catenary guess: dict as ``fem_line``, or with ``error`` (the solver's message) if it fails."""
     start = time.perf_counter()
     line = Line("line", anchor, fairlead, [Segment(line_type(weight, EA), LENGTH, elements)], order)

@@ -14,7 +14,7 @@ returns the numbers the tests assert on, in a few seconds.
     (and with the FEM's EA), (c) cablefem FEM statics (``solve_static`` on a uniform mesh,
     reactions from ``results.end_forces``), from a line mostly on the seabed to a nearly
     taut one; and (c*) ``solve_line`` with its touchdown-fitted mesh, as ``cablefem static``
-    solves a scene, where it converges.
+    solves a scene with ``[solver] fit_touchdown = true``, where it converges.
 (2) Three identical lines at 120 deg around a floater: the horizontal restoring force,
     the sum of the three FEM fairlead forces against the sum of the closed-form ones, for
     floater offsets in the directions 0, 30, 60 and 90 deg, with the symmetry checks of the

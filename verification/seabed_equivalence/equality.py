@@ -1,5 +1,6 @@
 """(a) of verification/seabed_equivalence: every description of the plane, simplify on and off,
-solved as ``cablefem static`` solves it and compared with the plane's answer."""
+solved as ``cablefem static`` solves it with ``[solver] fit_touchdown = true`` and compared with the
+plane's answer."""
 
 from dataclasses import replace
 from pathlib import Path
@@ -46,7 +47,7 @@ def equivalence(folder):
     rows, references = [], {}
     for label, on, file in write_scenes(folder):
         scene = load_scene(Path(folder) / file)
-        rep, res = solve(scene)
+        rep, res = solve(scene, fit_touchdown=True)  # a plane on the fitted mesh, general models as given
         if not references:
             references[True] = rep
             references[False] = solve(scene, fit_touchdown=False)[0]
@@ -57,7 +58,8 @@ def equivalence(folder):
                          **fitted, "fairlead_tension": rep.fairlead_tension,
                          "touchdown_s": rep.touchdown_s, "newton_iterations": res.iterations,
                          "strategy": res.strategy, "note": "statics' touchdown fitting on the plane"})
-        seabed_note = next(n for n in scene.notes if n.startswith("seabed:"))
+        seabed_note = next((n for n in scene.notes if n.startswith("seabed:")),
+                           f"seabed: {scene.seabed.describe()}")  # a plane is used as given: no note
         rows.append({
             "seabed": label, "simplify": on, "model": scene.seabed.kind,
             "model_class": type(scene.seabed).__name__,

@@ -129,10 +129,11 @@ STOP_SPEED, STOP_DISTANCE, STOP_START = 1.0, 10.0, 2.0  # m/s, m, s
 def stop_scene(dt, duration):
     """The flume line on its flat floor, frictionless (so that the static end state is unique):
     at rest for 2 s, then the fairlead moves away from the anchor at 1 m/s for 10 m and stops
-    dead (a velocity jump at both ends of the stroke)."""
+    dead (a velocity jump at both ends of the stroke: a table joined by straight lines)."""
     end = STOP_START + STOP_DISTANCE / STOP_SPEED
     motion = Motion(kind="table", times=np.array([0.0, STOP_START, end, end + 1e3]),
-                    positions=np.array([[0, 0, 0], [0, 0, 0], [STOP_DISTANCE, 0, 0], [STOP_DISTANCE, 0, 0]], float))
+                    positions=np.array([[0, 0, 0], [0, 0, 0], [STOP_DISTANCE, 0, 0], [STOP_DISTANCE, 0, 0]], float),
+                    interpolation="linear")
     return flume_like("stop", FLUME_ANCHOR, (0.0, 0.0, 0.0), motion, friction=False, dt=dt, duration=duration), end
 
 
