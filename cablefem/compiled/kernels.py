@@ -176,14 +176,14 @@ def subtract_node_loads(mesh, pts, work, state, vertex, force):
     """``force`` (3,) less the node loads at vertex ``vertex`` at the state (X, V, A): a line's own
     force on a point that rides on its end (``LineSystem.end_point_loads``)."""
     X, V, Acc = state
-    ctx, out, M, u = work.ctx[0], work.out[0], work.M, work.u
+    ctx, out = work.ctx[0], work.out[0]
     ctx.jac = False
     for k in range(mesh.nodes.shape[0]):
         if mesh.nodes[k] != vertex:
             continue
         for a in range(3):
             ctx.r[a], ctx.v[a], ctx.a[a] = X[vertex, a], V[vertex, a], Acc[vertex, a]
-        node_point(ctx, pts.nodes[k], out, M, u)
+        node_point(ctx, pts.nodes[k], out)
         for a in range(3):
             force[a] -= out.f[a]
 
