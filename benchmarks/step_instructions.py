@@ -13,6 +13,9 @@ variant natively (~1-2 min), then the child runs (~1 min). To compare commits, r
 worktree of each (``PYTHONPATH=<worktree> python -m benchmarks.step_instructions``).
 
     python -m benchmarks.step_instructions [--case steep dynamic 1 40 0.01] [--duration 1.0] [--keep FILE]
+
+Last measured (the default case, 1 s: 100 steps): 48.07 M instructions, 0.859x the 55.93 M of
+the code before the load catalog (the target: no slower than it).
 """
 
 import argparse
