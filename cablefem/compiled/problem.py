@@ -16,7 +16,7 @@ class Marcher:
     """Runs an integrator's steps through the compiled policy (``STEPS``); built by ``for_integrator``."""
 
     def __init__(self, integ, kind):
-        fem, ev = integ.fem, integ.fused
+        fem, ev = integ.fem, integ.evaluator
         self.scheme = np.array([integ.compiled_scheme()], dtype=SCHEME)
         self.seabed, self.kind = integ.system.seabed, kind
         nel, nq = ev.full.dx.shape
@@ -50,8 +50,8 @@ class Marcher:
         """A marcher for ``integ`` (a ``CompiledSteps``) when it evaluates with the compiled kernel on a
         plane, a depth grid or a triangulated surface with compiled projections; None otherwise (the
         Python ops apply)."""
-        ev, seabed = integ.fused, integ.system.seabed
-        if ev is None:
+        ev, seabed = integ.evaluator, integ.system.seabed
+        if not ev.compiled:
             return None
         if ev.plane.size:
             return cls(integ, PLANE)

@@ -20,14 +20,11 @@ fails at ``min_dt`` raises a ``ConvergenceError`` with its residual. ``INTEGRATO
 registry; ``integrator_options`` turns a scene's [solver] into their arguments.
 """
 
-from functools import cached_property
-
 import numpy as np
-import scipy.sparse.linalg as spla
 
 from cablefem.dynamics import policy, python_ops
 from cablefem.errors import ConvergenceError
-from cablefem.fem.forms import mass_matrix
+from cablefem.fem.evaluator import evaluator
 
 #: the policy on Python ops, for every integrator
 PYTHON = policy.bind(python_ops)
@@ -96,7 +93,6 @@ class Integrator:
         self.min_dt = float(min_dt) if min_dt else self.dt / 1024.0
         self.tolerance = tolerance
         self.max_iterations = max_iterations
-        self.lumped = lumped  # the mass M and its free block M_free are assembled on first use
         self.length = system.line.unstretched_length
         self.end_points = system.points_at_ends  # a point's load rides on an end: ``reactions`` leave it out
         self.scale = float(np.linalg.norm(system.weight_vector()[fem.free_dofs])) or 1.0
@@ -106,19 +102,14 @@ class Integrator:
         self.residual_rows = None  # M A + G at the current state, (N, 3); compiled steps may fill only
         # the anchor and fairlead rows (the reactions), leaving the others zero
         self.lu, self.lu_factors = None, None
-        self.fused = None
-        if compiled and not lumped and fem.free_dofs.size:  # a line without unknowns: the numpy path
-            from cablefem.compiled.evaluator import FusedEvaluator
-
-            self.fused = FusedEvaluator.for_system(system, system.props["mass"])
-        else:  # the numpy path needs the mass (and a lumped one checks its order) at once
-            self.M_free
-        # a compiled tangent costs about a residual and its banded LU a few microseconds, so full
-        # Newton (fewer iterations) wins; on the numpy path kept factors save more than they cost
+        # the compiled kernel, or the numpy loads with their sparse LU (a lumped mass, compiled=False,
+        # a line without unknowns)
+        self.evaluator = evaluator(system, compiled, lumped)
+        # "auto": full Newton where a tangent costs about a residual (fewer iterations win), else kept factors
         if newton not in ("auto", "full", "modified"):
             raise ValueError(f"newton must be auto, full or modified, got {newton!r}")
         self.newton_mode = {"full": policy.FULL, "modified": policy.MODIFIED}.get(
-            newton, policy.SWITCHING if self.fused is not None else policy.MODIFIED)
+            newton, policy.SWITCHING if self.evaluator.full_newton_pays else policy.MODIFIED)
         if not fem.free_dofs.size:  # one element between prescribed ends: each step one evaluation
             self.newton_mode = policy.FULL
         self.full_steps_left = 0  # "auto": attempts still to run in full Newton
@@ -134,17 +125,6 @@ class Integrator:
 
     # ------------------------------------------------------------------ counters
     steps, newton_iterations, nfev, njev, nlu, rejected, corrections = map(_counter, range(len(policy.COUNTERS)))
-
-    @cached_property
-    def M(self):
-        """The mass matrix (N 3, N 3), CSR (``forms.mass_matrix``); the compiled steps carry the
-        mass in their kernel, so there it is assembled only if M A is needed at a nonzero A."""
-        return mass_matrix(self.system, self.lumped)
-
-    @cached_property
-    def M_free(self):
-        """The mass matrix's block of the free DOFs, CSR."""
-        return self.M[self.fem.free_vector_dofs][:, self.fem.free_vector_dofs].tocsr()
 
     @property
     def settings(self):
@@ -188,48 +168,37 @@ class Integrator:
             ends[:, 0] = positions(times) if positions is not None else [self.anchor_path(t)[0] for t in times]
         return ends
 
+    @property
+    def M(self):
+        """The mass matrix (N 3, N 3), CSR (``cablefem.fem.forms.mass_matrix``), assembled on first use."""
+        return self.evaluator.M
+
     def inertia(self, A):
         """Rows (N, 3) of M A (zeros, without assembling M, at A = 0: a start at rest)."""
-        if not A.any():
-            return np.zeros(A.shape)
-        return (self.M @ A.ravel()).reshape(A.shape)
+        return self.evaluator.inertia(A)
 
     def initial_acceleration(self):
         """A0 from (M + added mass) A0 = -G(X0, V0) on the free rows (zero at rest in equilibrium)."""
-        fem, system = self.fem, self.system
+        fem, ev = self.fem, self.evaluator
         A = np.zeros_like(self.X)
         X, V = self.X.copy(), self.V.copy()
         self.set_boundary(X, V, A, self.t)
-        if self.fused is not None:  # the same, compiled: the mass is the tangent's a_x part
-            rows, with_mass = self.fused.evaluate(X, V, A, 0.0, 1.0)
-            if np.linalg.norm(rows[fem.free_dofs]) > 1e-12 * self.scale:
-                mass = with_mass - self.fused.evaluate(X, V, A, 0.0, 0.0)[1]
-                factors = self.fused.factorize(mass)
-                if factors is None:
-                    raise ConvergenceError(f"{self.name}: the mass matrix is singular at t = {self.t:.6g} s "
-                                           "(check the line's mass and added-mass coefficients)")
-                A[fem.free_dofs] = self.fused.solve(factors, rows)
+        rows, with_mass = ev.evaluate(X, V, A, 0.0, 1.0, t=self.t)
+        if np.linalg.norm(rows[fem.free_dofs]) <= 1e-12 * self.scale:
             return A
-        residual, blocks = system.evaluate(system.state(X, V, A, self.t), jacobian=True,
-                                           velocity_factor=0.0, acceleration_factor=1.0)
-        rhs = -(residual + self.inertia(A))[fem.free_dofs].ravel()
-        if np.linalg.norm(rhs) <= 1e-12 * self.scale:
-            return A
-        # d(G + M A)/dA restricted to the free rows: the acceleration blocks only
-        static = system.evaluate(system.state(X, V, A, self.t), jacobian=True)[1]
-        K = system.matrix(blocks) - system.matrix(static) + self.M_free
-        A[fem.free_dofs] = spla.spsolve(K.tocsc(), rhs).reshape(-1, 3)
+        factors = ev.mass_factors(X, V, A, with_mass)
+        if factors is None:
+            raise ConvergenceError(f"{self.name}: the mass matrix is singular at t = {self.t:.6g} s "
+                                   "(check the line's mass and added-mass coefficients)")
+        A[fem.free_dofs] = ev.solve(factors, rows)
         return A
 
     # ------------------------------------------------------------ the policy's Python ops
-    def rows_and_tangent(self, X, V, A, t, v_x, a_x, jacobian, stick=False):
+    def rows_and_tangent(self, X, V, A, t, v_x, a_x, jacobian, held=False):
         """Rows M A + G (N, 3) at the evaluation point and, with ``jacobian``, the tangent of the
-        loads and mass in the representation ``increment`` factors (``stick``: held branches)."""
-        if self.fused is not None:
-            self.nfev += 1
-            return self.fused.evaluate(X, V, A, v_x, a_x, jacobian, stick)
-        residual, blocks = self.evaluate(X, V, A, t, v_x, a_x, jacobian)
-        return residual + self.inertia(A), blocks
+        loads and mass in the representation ``increment`` factors (``held``: held branches)."""
+        self.nfev += 1
+        return self.evaluator.evaluate(X, V, A, v_x, a_x, jacobian, held, t)
 
     def evaluate(self, X, V, A, t, v_x, a_x, jacobian=True):
         """Load residual rows and tangent blocks (the numpy loads) at an evaluation point."""
@@ -241,9 +210,9 @@ class Integrator:
         factors of ``tangent`` (counted, kept), else from the kept ones; None if the tangent is
         singular or the increment not finite."""
         if refactor:
-            _, a_x, g_x = self.factors
+            g_x = self.factors[2]
             self.njev += 1
-            self.lu = self.factorize(tangent, g_x, a_x)
+            self.lu = self.evaluator.factorize(tangent, g_x)
             if self.lu is None:
                 return None
             self.nlu += 1
@@ -251,20 +220,9 @@ class Integrator:
         dX = self.solve(self.lu, rows)
         return dX if np.all(np.isfinite(dX)) else None
 
-    def factorize(self, tangent, g_x, a_x):
-        """LU factors of g_x (K + a_x M), or None when singular."""
-        if self.fused is not None:
-            return self.fused.factorize(tangent, g_x)
-        try:
-            return spla.splu((g_x * (self.system.matrix(tangent) + a_x * self.M_free)).tocsc())
-        except RuntimeError:
-            return None
-
     def solve(self, factors, rows):
         """Newton increment (N_free, 3) of the free DOFs for residual rows (N, 3)."""
-        if self.fused is not None:
-            return self.fused.solve(factors, rows)
-        return factors.solve(-rows[self.fem.free_dofs].ravel()).reshape(-1, 3)
+        return self.evaluator.solve(factors, rows)
 
     def predict(self, h):
         """Taylor predictor of the positions at t + h with the prescribed ends at ``self.targets``

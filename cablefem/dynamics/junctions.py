@@ -141,12 +141,12 @@ class JunctionSteps:
         names = list(self.junctions)
         ends = np.full((len(self.integrators), 2, 3), -1, dtype=np.int64)
         for k, member in enumerate(self.ends):
-            order = list(self.integrators[k].fused.free_order)
+            order = list(self.integrators[k].evaluator.free_order)
             for s, (_, _, name, dof) in enumerate(member):
                 ends[k, s] = (order.index(dof), names.index(name), dof)
         leaders = np.array([(k, self.integrators[k].fem.end_dofs[end])
                             for k, end in (self.junctions[name][0] for name in names)], dtype=np.int64)
-        size = max(integ.fused.n for integ in self.integrators)
+        size = max(integ.evaluator.n for integ in self.integrators)
         return junction_march.group(ends, leaders, size, self.max_iterations, self.integrators[0].MAX_GROWTH)
 
     def advance(self, target):
@@ -228,7 +228,7 @@ class JunctionSteps:
         v_x, a_x, g_x = integ.factors
         rows, tangent = integ.rows_and_tangent(X, V, A, integ.t_eval, v_x, a_x, True)
         integ.njev += 1
-        factors = integ.factorize(tangent, g_x, a_x)
+        factors = integ.evaluator.factorize(tangent, g_x)
         if factors is None:
             return None
         integ.nlu += 1
@@ -239,10 +239,7 @@ class JunctionSteps:
         for i, (_, _, _, dof) in enumerate(self.ends[k]):
             for c in range(3):
                 stack[1 + 3 * i + c, dof, c] = -1.0  # the solve gives -K^-1 rows: K^-1 e
-        if integ.fused is not None:
-            solved = integ.fused.solve_many(factors, stack)
-        else:
-            solved = np.array([integ.solve(factors, part) for part in stack])
+        solved = integ.evaluator.solve_many(factors, stack)
         y = solved[0]
         Z = solved[1:].reshape(len(solved) - 1, -1).T  # of the matrix the step factorises (g_x K), as y is
         ZE = np.concatenate([Z[3 * row:3 * row + 3] for _, row, _, _ in self.ends[k]])

@@ -58,8 +58,7 @@ def take_step(prob, fraction):
 
 def set_base(prob):
     prob.base = prob.X1
-    if prob.fused is not None:
-        prob.fused.keep()
+    prob.evaluator.keep()
 
 
 def restore_base(prob):
@@ -67,8 +66,8 @@ def restore_base(prob):
 
 
 def hold(prob, again):
-    """The branch holds need the compiled kernel's per-point state: none with the numpy loads."""
-    return prob.fused is not None and prob.fused.hold(again)
+    """The branch holds of the evaluator (the compiled kernel's per-point state; none with the numpy loads)."""
+    return prob.evaluator.hold(again)
 
 
 def save_original(prob):

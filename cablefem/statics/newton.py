@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse.linalg as spla
 
+from cablefem.fem.evaluator import evaluator
 from cablefem.statics.start_shape import initial_shape
 
 
@@ -50,7 +51,7 @@ def newton(system, X, tolerance=1e-8, max_iterations=50, scale=None):
     length = system.line.unstretched_length
     scale = scale or float(np.linalg.norm(system.weight_vector()[free])) or 1.0
     X = X.copy()
-    linear = _Linearisation.of(system)
+    linear = _Linearisation(system)
     residual, tangent = linear.evaluate(X)
     norm = np.linalg.norm(residual[free]) / scale
     energy = None  # the potential energy at X, computed when a line search needs it
@@ -97,41 +98,24 @@ def newton(system, X, tolerance=1e-8, max_iterations=50, scale=None):
 
 
 class _Linearisation:
-    """The static residual rows (N, 3) at X with their tangent, and the Newton step from them:
-    through ``cablefem.compiled.evaluator`` (compiled, banded LU) when the system assembles with its kernel
-    and holds only loads the fused kernel knows, else through ``LineSystem.evaluate`` and a
-    sparse LU (the reference path: the loads' numpy faces on precomputed basis data with
-    ``assembly="numpy"``, scikit-fem's forms with ``assembly="forms"``). Both give
-    the same numbers to round-off (tests/test_statics.py). Built per Newton solve: the fused
-    kernel copies the seabed stiffness, which stiffness continuation changes between solves."""
+    """The static residual rows (N, 3) at X with their tangent, and the Newton step from them, from
+    the system's evaluator (``cablefem.fem.evaluator``): compiled when the system assembles with its
+    kernel, else the loads' numpy faces with a sparse LU (the reference: precomputed basis data with
+    ``assembly="numpy"``, scikit-fem's forms with ``assembly="forms"``); the same numbers to round-off
+    (tests/test_statics.py). Built per Newton solve: the compiled kernel copies the seabed
+    stiffness, which stiffness continuation changes between solves."""
 
-    def __init__(self, system, fused):
-        self.system, self.fused = system, fused
+    def __init__(self, system):
+        self.evaluator = evaluator(system, compiled=system.assembly == "kernel")
         self.zeros = np.zeros((system.fem.n_dofs, 3))
 
-    @classmethod
-    def of(cls, system):
-        fused = None
-        if system.assembly == "kernel":
-            from cablefem.compiled.evaluator import FusedEvaluator
-            fused = FusedEvaluator.for_system(system, system.props["mass"])
-        return cls(system, fused)
-
     def evaluate(self, X):
-        if self.fused is None:
-            return self.system.evaluate(self.system.state(X))
-        return self.fused.evaluate(X, self.zeros, self.zeros, 0.0, 0.0)
+        return self.evaluator.evaluate(X, self.zeros, self.zeros, 0.0, 0.0)
 
     def solve(self, tangent, residual):
         """Newton step (N_free, 3) of the free DOFs, or None when the tangent is singular."""
-        if self.fused is None:
-            try:
-                K = self.system.matrix(tangent).tocsc()
-                return spla.spsolve(K, -residual[self.system.fem.free_dofs].ravel()).reshape(-1, 3)
-            except RuntimeError:
-                return None
-        factors = self.fused.factorize(tangent)
-        return None if factors is None else self.fused.solve(factors, residual)
+        factors = self.evaluator.factorize(tangent)
+        return None if factors is None else self.evaluator.solve(factors, residual)
 
 
 def scale_free_residual(system, X):
@@ -140,7 +124,7 @@ def scale_free_residual(system, X):
     stiffnesses (a position known to round-off eps |X| leaves forces eps |X| EA / h); this does not."""
     if system.fem.free_dofs.size == 0:  # a line of one element between prescribed ends: nothing to solve
         return 0.0
-    linear = _Linearisation.of(system)
+    linear = _Linearisation(system)
     residual, tangent = linear.evaluate(X)
     step = linear.solve(tangent, residual)
     if step is None:
