@@ -5,7 +5,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from cablefem.dynamics.schemes import BDF2, GeneralizedAlpha
+from cablefem.dynamics.bdf2 import BDF2
+from cablefem.dynamics.generalized_alpha import GeneralizedAlpha
 from cablefem.compiled.evaluator import FusedEvaluator
 from cablefem.model.network import boundary_path
 from cablefem.fem.system import build_system

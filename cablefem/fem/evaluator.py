@@ -13,7 +13,7 @@ and solve for the step of the free DOFs. Two evaluators give the same numbers to
 - ``cablefem.compiled.evaluator.FusedEvaluator``: the compiled kernel over the load catalog, the
   banded tangent and LAPACK's banded LU.
 
-The interface both keep:
+``LineSystem.evaluator(compiled, lumped)`` gives a system's. The interface both keep:
 
     evaluate(X, V, A, v_x, a_x, jacobian=True, held=False, t=0.0) -> (rows, tangent or None)
     factorize(tangent, scale=1.0) -> factors, or None if singular
@@ -111,17 +111,3 @@ class NumpyEvaluator(Evaluator):
             return spla.splu((system.matrix(blocks) - system.matrix(static) + self.M_free).tocsc())
         except RuntimeError:
             return None
-
-
-def evaluator(system, compiled=True, lumped=False):
-    """The evaluator of ``system``: compiled (``FusedEvaluator``) unless ``compiled`` is False, the mass
-    is lumped (only the numpy face assembles it) or the line has no unknowns (one element between
-    prescribed ends: the band would be empty)."""
-    if compiled and not lumped and system.fem.free_dofs.size:
-        from cablefem.compiled.evaluator import FusedEvaluator  # numba only where it is used
-
-        return FusedEvaluator(system, system.props["mass"])
-    numpy = NumpyEvaluator(system, lumped)
-    if lumped:
-        numpy.M  # a lumped mass checks the element order now, not at the first step
-    return numpy
