@@ -124,3 +124,19 @@ def test_frames_give_the_end_tension_of_tensions_csv(scene, tmp_path):
             tension = line_points(frame, k)[1]["tension"]
             assert tension[-1] == pytest.approx(table[prefix + "fairlead_tension"][row], rel=1e-9)
             assert tension[0] == pytest.approx(table[prefix + "anchor_tension"][row], rel=1e-9)
+
+
+def test_the_summary_extremes_are_those_of_tensions_csv(tmp_path):
+    """summary.json's largest and smallest end tensions per line, and when they first occur, are
+    those of tensions.csv's columns (written to 10 digits), for every line of a network."""
+    out = tmp_path / "run"
+    assert main(["run", str(CROWFOOT), "--out", str(out), "--duration", "3.0"]) == 0
+    table = read_tensions(out)
+    extremes = json.loads((out / "summary.json").read_text())["tension_extremes"]
+    for name, entry in extremes.items():
+        for key in ("fairlead_tension", "anchor_tension"):
+            values = table[f"{name}:{key}"]
+            for which, pick in (("max", np.argmax), ("min", np.argmin)):
+                k = pick(values)
+                assert entry[f"{key}_{which}"] == pytest.approx(values[k], rel=1e-9)
+                assert entry[f"{key}_{which}_t"] == pytest.approx(table["t"][k], abs=1e-9)

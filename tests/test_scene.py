@@ -48,6 +48,8 @@ EXPECTED_EXAMPLES = {  # file: (lines, unstretched length [m] of the first, segm
     "flume_flat_moordyn.toml": (1, 635.0, 1),
     "flume_flat_table.toml": (1, 635.0, 1),
     "chain_polyester.dat": (1, 1500.0, 2),
+    "oc4_semi.dat": (3, 835.5, 1),
+    "oc4_semi.toml": (3, 835.5, 1),
 }
 
 

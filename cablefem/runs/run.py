@@ -248,12 +248,13 @@ def _march(integrators, groups, times, write):
     return [(tk, [forces[id(integ)][k] for integ in integrators]) for k, tk in enumerate(times)]
 
 
-def _row(t, forces, extra=()):
+def _row(t, forces, tensions, extra=()):
     """A tensions.csv row: t, then per line fairlead_tension, anchor_tension, fx, fy, fz, from each
-    line's (fairlead, anchor) forces, then the network's ``extra`` values."""
+    line's (fairlead, anchor) forces and their ``tensions`` (lines, 2), then the network's ``extra``
+    values."""
     values = [t]
-    for fairlead, anchor in forces:
-        values += [np.linalg.norm(fairlead), np.linalg.norm(anchor), *fairlead]
+    for (fairlead, _), (T_fairlead, T_anchor) in zip(forces, tensions):
+        values += [T_fairlead, T_anchor, *fairlead]
     return [f"{x + 0.0:.10g}" for x in [*values, *extra]]  # + 0.0: no "-0"
 
 
@@ -285,22 +286,25 @@ class _Extremes:
 
     def rows(self, rows):
         """The tensions.csv rows of ``rows`` (t, forces per line), the extremes updated."""
-        for t, forces in rows:
-            self.update(t, forces)
-        if self.network is None:
-            return [_row(t, forces) for t, forces in rows]
-        extra = self.network.values([t for t, _ in rows], [forces for _, forces in rows])
-        return [_row(t, forces, values) for (t, forces), values in zip(rows, extra)]
+        times = np.array([t for t, _ in rows])
+        tensions = np.linalg.norm(np.array([forces for _, forces in rows], dtype=float).reshape(len(rows), -1, 2, 3),
+                                  axis=-1)  # (rows, lines, 2): each row's fairlead and anchor tension
+        self.update(times, tensions)
+        extra = self.network.values(list(times), [forces for _, forces in rows]) if self.network is not None \
+            else [()] * len(rows)
+        return [_row(t, forces, T, values) for (t, forces), T, values in zip(rows, tensions, extra)]
 
-    def update(self, t, forces):
-        for name, (fairlead, anchor) in zip(self.names, forces):
-            for key, value in (("fairlead_tension", np.linalg.norm(fairlead)),
-                               ("anchor_tension", np.linalg.norm(anchor))):
-                entry = self.table[name]
-                if f"{key}_max" not in entry or value > entry[f"{key}_max"]:
-                    entry[f"{key}_max"], entry[f"{key}_max_t"] = float(value), float(t)
-                if f"{key}_min" not in entry or value < entry[f"{key}_min"]:
-                    entry[f"{key}_min"], entry[f"{key}_min_t"] = float(value), float(t)
+    def update(self, times, tensions):
+        """The extremes after rows at ``times`` (m,) with ``tensions`` (m, lines, 2); the first time of
+        an extreme is kept."""
+        for name, line in zip(self.names, np.moveaxis(tensions, 1, 0)):
+            entry = self.table[name]
+            for key, values in (("fairlead_tension", line[:, 0]), ("anchor_tension", line[:, 1])):
+                high, low = int(np.argmax(values)), int(np.argmin(values))
+                if f"{key}_max" not in entry or values[high] > entry[f"{key}_max"]:
+                    entry[f"{key}_max"], entry[f"{key}_max_t"] = float(values[high]), float(times[high])
+                if f"{key}_min" not in entry or values[low] < entry[f"{key}_min"]:
+                    entry[f"{key}_min"], entry[f"{key}_min_t"] = float(values[low]), float(times[low])
 
     def as_dict(self):
         return self.table
