@@ -132,7 +132,7 @@ def _assemble_at(prob, X, V, A, tangent, held, elements):
         lost = project(prob.projector, X, prob.mesh, prob.bed, tangent)
         if lost != 0:
             return lost
-    factors = (prob.clock[0].v_x, prob.clock[0].a_x)
+    factors = (prob.clock[0].v_x, prob.clock[0].a_x, prob.clock[0].h)  # h: loads whose history evolves in time
     nb = prob.rhs.shape[0]
     ld = 2 * prob.mesh.kl + prob.mesh.ku + 1
     band2 = prob.band.reshape((nb, ld)).T  # the (ld, nb) column-major view the assembly writes

@@ -225,16 +225,19 @@ class Integrator:
     def rows_and_tangent(self, X, V, A, t, v_x, a_x, jacobian, stick=False):
         """Rows M A + G (N, 3) at the evaluation point and, with ``jacobian``, the tangent of the
         loads and mass in the representation ``increment`` factors (``stick``: held branches)."""
+        h = getattr(self, "h", t - self.t)  # the step's size (BDF2 evaluates at t + h), for loads.rope
         if self.fused is not None:
             self.nfev += 1
-            return self.fused.evaluate(X, V, A, v_x, a_x, jacobian, stick)
-        residual, blocks = self.evaluate(X, V, A, t, v_x, a_x, jacobian)
+            return self.fused.evaluate(X, V, A, v_x, a_x, jacobian, stick, h=h)
+        residual, blocks = self.evaluate(X, V, A, t, v_x, a_x, jacobian, h=h)
         return residual + self.inertia(A), blocks
 
-    def evaluate(self, X, V, A, t, v_x, a_x, jacobian=True):
-        """Load residual rows and tangent blocks (the numpy loads) at an evaluation point."""
+    def evaluate(self, X, V, A, t, v_x, a_x, jacobian=True, h=0.0):
+        """Load residual rows and tangent blocks (the numpy loads) at an evaluation point of a step
+        of h [s]."""
         self.nfev += 1
-        return self.system.evaluate(self.system.state(X, V, A, t), jacobian, v_x, a_x)
+        state = self.system.state(X, V, A, t, inv_h=1.0 / h if h > 0.0 else 0.0)
+        return self.system.evaluate(state, jacobian, v_x, a_x)
 
     def increment(self, tangent, rows, refactor):
         """The Newton increment (N_free, 3) for residual ``rows``, with ``refactor`` from fresh LU

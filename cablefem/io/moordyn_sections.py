@@ -19,6 +19,7 @@ SECTION_KEYWORDS = (
     (("POINTS", "POINT LIST", "POINT PROPERTIES", "CONNECTION PROPERTIES", "NODE PROPERTIES"), "POINTS"),
     (("LINES", "LINE LIST", "LINE PROPERTIES"), "LINES"),
     (("FAILURE",), "FAILURE"),
+    (("SYROPE IC",), "SYROPE IC"),
     (("OPTIONS",), "OPTIONS"),
     (("OUTPUT",), "OUTPUTS"),
 )
@@ -50,8 +51,6 @@ REFUSED = {
     "Currents": ("a time-varying or gridded current (Currents 2 to 5)",
                  "give a steady profile: Currents 1 with current_profile.txt, or [environment] current_profile "
                  "in a TOML that wraps the file"),
-    "nonlinear": ("a nonlinear or viscoelastic EA or BA (a curve file or 'a|b' values)",
-                  "give constant EA and BA (EA: the slope of the curve at the working tension)"),
     "turbine": ("points on a FAST.Farm turbine (TurbineN, MoorDyn-F)",
                 "attach them to a coupled body (BodyN) of BODIES, or make them Coupled points"),
     "point force": ("a steady external force on a point (the FX FY FZ columns)",
@@ -123,7 +122,8 @@ def _table_rows(section, rows, v1):
 def parse_sections(sections):
     """Raw tables of a split file by section (LINE TYPES, BODIES, POINTS, LINES: rows of fields;
     OPTIONS, OUTPUTS: rows) and "v1": the rows of v1 LINE TYPES headers."""
-    found = {"LINE TYPES": [], "BODIES": [], "POINTS": [], "LINES": [], "OPTIONS": [], "OUTPUTS": [], "v1": []}
+    found = {"LINE TYPES": [], "BODIES": [], "POINTS": [], "LINES": [], "OPTIONS": [], "OUTPUTS": [], "v1": [],
+             "SYROPE IC": []}
     recognised = False
     for name, title, number, rows in sections:
         if name is None:
@@ -137,6 +137,8 @@ def parse_sections(sections):
             found[name] += _table_rows(name, rows, found["v1"])
         elif name in ("OPTIONS", "OUTPUTS"):
             found[name] += rows
+        elif name == "SYROPE IC":  # up to two rows of column names and units, then 'Line(s) Tmax0 Tmean0'
+            found[name] += [(n, f) for n, f in rows if len(f) >= 2 and is_number(f[1])]
         elif any(sum(is_number(f) for f in fields) >= 1 for _, fields in rows):
             refuse(name, at(number, name))
     return found
