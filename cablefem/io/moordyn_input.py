@@ -68,6 +68,9 @@ OPTION_CHECKS = {"wtrdpth": v.limited(v.positive, "length"),
                  "statdynfricscale": v.limited(v.positive, "friction"), "dtm": v.positive,
                  "tmax": v.positive, "currents": v.number, "wavekin": v.number}
 _WHOLE = re.compile(r"-?[0-9]+")  # ASCII digits only: str.isdigit() takes '\u00b2', which int() refuses
+V1_LINES_NOTE = ("LINES (line {row}): MoorDyn v1 columns (UnstrLen NumSegs NodeAnch NodeFair), read as the header "
+                 "names them: AttachA = NodeAnch, AttachB = NodeFair (MoorDyn-C 2.x reads LINES by position as v2 "
+                 "columns and would take UnstrLen as AttachA)")
 #: v1 LINE TYPES header names and the quantity MoorDyn-C reads at their positions (7-10)
 V1_NOTE = ("LINE TYPES (line {row}): MoorDyn v1 column names (Can Cat Cdn Cdt); read by position as "
            "MoorDyn-C reads them: the 7th column as Cd (normal drag), the 8th as Ca, the 9th as CdAx, the 10th "
@@ -98,10 +101,16 @@ def _line_types(rows, v1, notes):
     return types
 
 
-def _lines(rows, types, points):
-    """Raw lines in file order: dicts with id, type, ends (point names), length [m], segments, row."""
+def _lines(rows, types, points, v1=(), notes=None):
+    """Raw lines in file order: dicts with id, type, ends (point names), length [m], segments, row.
+    ``v1``: the rows of a v1 header (Line LineType UnstrLen NumSegs NodeAnch NodeFair Flags): its
+    columns are read as it names them."""
     lines, ids = [], set()
+    for row in v1:
+        notes.append(V1_LINES_NOTE.format(row=row))
     for number, fields in rows:
+        if v1:
+            fields = fields[:2] + fields[4:6] + fields[2:4] + fields[6:]
         key = f"LINES.{fields[0]}"
         if fields[0] in ids:
             raise InputError("duplicate line ID", key=_at(number, key))
@@ -218,10 +227,10 @@ def _build(path, text, simplify=True):
     found = parse_sections(split_sections(text))
     if not found["LINE TYPES"] and not found["LINES"]:
         raise InputError("no LINE TYPES or LINES section: not a MoorDyn v2 input file")
-    raw_types = _line_types(found["LINE TYPES"], found["v1"], notes)
+    raw_types = _line_types(found["LINE TYPES"], found["v1"].get("LINE TYPES", ()), notes)
     bodies = read_bodies(found["BODIES"], notes)
     points = read_points(found["POINTS"], bodies, notes)
-    raw_lines = _lines(found["LINES"], raw_types, points)
+    raw_lines = _lines(found["LINES"], raw_types, points, found["v1"].get("LINES", ()), notes)
     options, raw_options, seafloor, options_rows = _options(found["OPTIONS"], notes)
     if found["OUTPUTS"]:
         notes.append(f"OUTPUTS ignored: {' '.join(f for _, fields in found['OUTPUTS'] for f in fields)}")

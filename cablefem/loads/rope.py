@@ -367,8 +367,6 @@ def rope_point(ctx, p, old, new, state, hold, out):
         Td, Td_r = damping(q, rate)
     else:
         inv_h = ctx.inv_h
-        if inv_h == 0.0 and ctx.v_x > 0.0:  # a run that gave no step size: fail loudly, not relaxed
-            inv_h = np.nan
         c = (q.BA + q.BA_D) * inv_h
         if q.law == VISCOELASTIC:
             e1, Tm, dTm, dR = viscoelastic(q, e, rate, old.rope.slow, c)
@@ -405,6 +403,8 @@ def rope_point(ctx, p, old, new, state, hold, out):
         elastic = damped = 1.0 if active else 0.0
         T = Te + Td if active else 0.0
         taut = e > 0.0 and T > 0.0
+    if q.law != TABLE and ctx.inv_h == 0.0 and ctx.v_x > 0.0:  # a run that gave no step size: fail loudly
+        T = np.nan
     dT_de = elastic * Te_e + damped * Td_e
     dT_dr = elastic * Te_r + damped * Td_r
     N[0] += T * t0

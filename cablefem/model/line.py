@@ -135,22 +135,25 @@ class Joint:
     """A point of a line at a vertex (a segment boundary or an end): a clump weight, a buoy, a
     connector. ``mass`` [kg] in air, ``volume`` [m^3] displaced (a sphere, for the part of it below
     the water surface), ``CdA`` [m^2] drag coefficient times area and ``Ca`` the added-mass
-    coefficient of that volume, both isotropic, as MoorDyn's points (``cablefem.loads.points``)."""
+    coefficient of that volume, both isotropic, as MoorDyn's points (``cablefem.loads.points``);
+    ``force`` (3,) [N] a steady external force on it (MoorDyn's FX FY FZ)."""
 
     name: str
     mass: float = 0.0
     volume: float = 0.0
     CdA: float = 0.0
     Ca: float = 0.0
+    force: tuple = (0.0, 0.0, 0.0)
 
     def __post_init__(self):
         for key in ("mass", "volume", "CdA", "Ca"):
             object.__setattr__(self, key, _positive(getattr(self, key), key, allow_zero=True))
+        object.__setattr__(self, "force", tuple(float(f) for f in _point(self.force, "force")))
 
     @property
     def loaded(self):
-        """Whether the point adds any force (a massless, volumeless joint adds none)."""
-        return bool(self.mass or self.volume or self.CdA)
+        """Whether the point adds any force (a massless, volumeless, unforced joint adds none)."""
+        return bool(self.mass or self.volume or self.CdA or any(self.force))
 
 
 @dataclass(frozen=True)

@@ -117,7 +117,7 @@ class Network:
             return None
         env = self.scene.environment
         loads = None
-        if point.mass > 0.0 or point.volume > 0.0:
+        if point.mass > 0.0 or point.volume > 0.0 or np.any(point.force):
             loads = PointLoads([0], [point.joint], env.water_density, env.gravity)
         node = _Node(name, self.offsets[owner], None if point.body is None else point.position, loads)
         self.nodes[name] = node
@@ -310,6 +310,19 @@ def solve_network(scene, build, tolerance=1e-8, max_iterations=50):
         if np.max(np.abs(lam * step)) <= tolerance * length and lam == 1.0:
             break
     converged = norm <= tolerance or (len(history) > 1 and np.max(np.abs(step)) <= tolerance * length)
+    if not converged:  # no equilibrium within Newton's reach: follow a damped pseudo-motion to one
+        from cablefem.statics.network_relax import relax
+
+        q0 = net.start()
+        states0 = [None] * len(scene.lines)
+        relaxed = relax(net, q0, states0, tolerance, 10 * max_iterations)
+        iterations += relaxed.iterations
+        if relaxed.converged:
+            q, states, places, norm = relaxed.q, relaxed.states, net.place(relaxed.q), relaxed.norm
+            history += relaxed.history
+            converged = True
+        else:
+            norm = min(norm, relaxed.norm)
     if not converged:
         raise ConvergenceError(
             f"network statics did not converge: relative residual {norm:.3g} of the balance of "
