@@ -153,7 +153,8 @@ def read_syrope_file(token, folder, key):
         fields = row.split()
         if len(fields) >= 2 and fields[1].lower() in ("owc", "wctype", "k1", "k2"):
             found[fields[1].lower()] = (fields[0], number)
-    missing = [n.upper() if n != "wctype" else "WCType" for n in ("owc", "wctype", "k1", "k2") if n not in found]
+    names = {"owc": "OWC", "wctype": "WCType", "k1": "k1", "k2": "k2"}
+    missing = [shown for n, shown in names.items() if n not in found]
     if missing:
         raise InputError(f"{name}: missing {', '.join(missing)} (rows 'value name': OWC, WCType, k1, k2)", key=key)
     form = found["wctype"][0].lower()
