@@ -32,6 +32,7 @@ from cablefem.errors import ConvergenceError
 from cablefem.loads.points import PointLoads
 from cablefem.model.network import coupling, rotation, rotation_rates
 from cablefem.statics.continuation import axial_continuation
+from cablefem.statics.network_relax import balance_norm, relax
 from cablefem.statics.newton import newton
 from cablefem.statics.solve import solve_static
 
@@ -278,7 +279,7 @@ def solve_network(scene, build, tolerance=1e-8, max_iterations=50):
     places = net.place(q)
     iterations = net.solve_strings(places, states, tolerance, max_iterations)
     r, J = net.balance(q, states, places)
-    norm = _norm(r, net, scale, length)
+    norm = balance_norm(r, net, scale, length)
     history = [norm]
     for outer in range(1, max_iterations + 1):
         if norm <= tolerance:
@@ -298,7 +299,7 @@ def solve_network(scene, build, tolerance=1e-8, max_iterations=50):
                 lam *= 0.5
                 continue
             r_t, J_t = net.balance(trial_q, trial_states, trial_places)
-            norm_t = _norm(r_t, net, scale, length)
+            norm_t = balance_norm(r_t, net, scale, length)
             if norm_t <= (1.0 - 1e-4 * lam) * norm or np.max(np.abs(lam * step)) <= tolerance * length:
                 accepted = True
                 break
@@ -311,8 +312,6 @@ def solve_network(scene, build, tolerance=1e-8, max_iterations=50):
             break
     converged = norm <= tolerance or (len(history) > 1 and np.max(np.abs(step)) <= tolerance * length)
     if not converged:  # no equilibrium within Newton's reach: follow a damped pseudo-motion to one
-        from cablefem.statics.network_relax import relax
-
         q0 = net.start()
         states0 = [None] * len(scene.lines)
         relaxed = relax(net, q0, states0, tolerance, 10 * max_iterations)
@@ -334,18 +333,6 @@ def solve_network(scene, build, tolerance=1e-8, max_iterations=50):
     poses = {name: q[net.offsets[name]:net.offsets[name] + 6].copy() for name in net.bodies}
     return NetworkStatics(net.systems, states, points, poses, iterations, norm, history,
                           time.perf_counter() - start)
-
-
-def _norm(r, net, scale, length):
-    """The balance's residual relative to the force scale (moments over the length scale)."""
-    out = 0.0
-    for name in net.junctions:
-        o = net.offsets[name]
-        out = max(out, np.linalg.norm(r[o:o + 3]))
-    for name in net.bodies:
-        o = net.offsets[name]
-        out = max(out, np.linalg.norm(r[o:o + 3]), np.linalg.norm(r[o + 3:o + 6]) / length)
-    return out / scale
 
 
 def network_loads(scene, ends, poses=None):

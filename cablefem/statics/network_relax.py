@@ -33,6 +33,18 @@ class Relaxed:
     converged: bool = False
 
 
+def balance_norm(r, net, scale, length):
+    """The balance's residual relative to the force scale (moments over the length scale)."""
+    out = 0.0
+    for name in net.junctions:
+        o = net.offsets[name]
+        out = max(out, np.linalg.norm(r[o:o + 3]))
+    for name in net.bodies:
+        o = net.offsets[name]
+        out = max(out, np.linalg.norm(r[o:o + 3]), np.linalg.norm(r[o + 3:o + 6]) / length)
+    return out / scale
+
+
 def pseudo_masses(net):
     """D (size,): each coupling unknown's mass [kg] (translations) or moment of inertia [kg m^2]
     (rotations); a massless junction takes half the mass of its strings."""
@@ -56,14 +68,12 @@ def pseudo_masses(net):
 def relax(net, q, states, tolerance, max_iterations):
     """Pseudo-transient continuation from q (``Network``'s unknowns) and the strings' ``states``
     (None: from their start shapes); a ``Relaxed``."""
-    from cablefem.statics.network import _norm
-
     scale, length = net.scale(), net.length()
     D = pseudo_masses(net)
     places = net.place(q)
     iterations = net.solve_strings(places, states, tolerance, 50)
     r, J = net.balance(q, states, places)
-    norm = _norm(r, net, scale, length)
+    norm = balance_norm(r, net, scale, length)
     history = [norm]
     # the first step moves the most loaded unknown by a tenth of the shortest string
     tau = 0.1 * length * float(np.min(D / np.maximum(np.abs(r), 1e-300)))
@@ -80,7 +90,7 @@ def relax(net, q, states, tolerance, max_iterations):
             tau *= 0.25
             continue
         r_t, J_t = net.balance(trial_q, trial_states, trial_places)
-        norm_t = _norm(r_t, net, scale, length)
+        norm_t = balance_norm(r_t, net, scale, length)
         if not np.isfinite(norm_t):
             tau *= 0.25
             continue
