@@ -141,8 +141,6 @@ SUBPROCESS = [
     ("out is a file", {}, ["--out", "{tmp}/scene.toml"], "exists and is not a folder"),
     ("anchor below the seabed", {"anchor = [-560.0, 0.0, -150.0]": "anchor = [-560.0, 0.0, -350.0]"}, [],
      "lines[0].anchor"),
-    ("adaptive generalised-alpha", {'integrator = "bdf2"': 'integrator = "generalized-alpha"\nadaptive = true'},
-     ["--out", "{tmp}/o"], "solver.adaptive"),
 ]
 
 
