@@ -128,19 +128,19 @@ class FusedEvaluator(Evaluator):
                            np.ascontiguousarray(proj.gap_gradient.reshape(shape + (3,))),
                            np.ascontiguousarray(proj.direction_gradient.reshape(shape + (3, 3))))
 
-    def evaluate(self, X, V, A, v_x, a_x, jacobian=True, held=False, t=0.0):
+    def evaluate(self, X, V, A, v_x, a_x, jacobian=True, held=False, t=0.0, h=0.0):
         """Rows M A + G (N, 3) and, with ``jacobian``, the banded K + v_x C + a_x M (LAPACK layout);
-        with ``held``, the loads on the branches the hold records hold. The branch state and the
-        trial history of every point go to ``self.points``."""
+        with ``held``, the loads on the branches the hold records hold; ``h``: the step's size [s] (0:
+        none, statics). The branch state and the trial history of every point go to ``self.points``."""
         rows = np.zeros((self.system.fem.n_dofs, 3))
         # Fortran order, as LAPACK and the compiled steps hold it (one compiled kernel for both;
         # the unused band is 2 x 2, since numba would type a 1 x 1 array as C-ordered)
         band = np.zeros((2 * self.kl + self.ku + 1, self.n) if jacobian else (2, 2), order="F")
-        kernels.assemble(self.mesh, self.bed(X), self.points, self.work, (X, V, A), (float(v_x), float(a_x)),
+        factors = (float(v_x), float(a_x), float(h))
+        kernels.assemble(self.mesh, self.bed(X), self.points, self.work, (X, V, A), factors,
                          bool(jacobian), bool(held), rows, band, self.elements)
         if self.mesh.nodes.size:
-            kernels.assemble_nodes(self.mesh, self.points, self.work, (X, V, A), (float(v_x), float(a_x)),
-                                   bool(jacobian), rows, band)
+            kernels.assemble_nodes(self.mesh, self.points, self.work, (X, V, A), factors, bool(jacobian), rows, band)
         return rows, (band if jacobian else None)
 
     def keep(self):

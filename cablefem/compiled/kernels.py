@@ -31,6 +31,7 @@ import numpy as np
 from numba import literal_unroll, njit
 from numba import uint64 as _index
 from numba.core.errors import NumbaExperimentalFeatureWarning
+from numba.extending import overload
 
 from cablefem.loads import catalog
 
@@ -45,11 +46,12 @@ FULL_RULES, REDUCED_RULES = LAYOUT.full_rules, LAYOUT.reduced_rules
 #: what a point kernel sees of its point (set by ``assemble``); t, stretch and P at full points only
 #: (P, the normal projector I - t t^T, only when a tangent is assembled); which loads of each rule the
 #: line has (``Points.full_loads``, ``reduced_loads``: read from the context, not passed, because
-#: an argument more per point cost more instructions than the calls it saves)
+#: an argument more per point cost more instructions than the calls it saves); inv_h: 1 / the step's
+#: size [1/s] (0 without a step: statics), for a load whose history evolves in time (``loads.rope``)
 POINT = [("r", "f8", (3,)), ("dr", "f8", (3,)), ("v", "f8", (3,)), ("dv", "f8", (3,)),
          ("a", "f8", (3,)), ("t", "f8", (3,)), ("stretch", "f8"), ("P", "f8", (3, 3)),
          ("gap", "f8"), ("n", "f8", (3,)), ("grad_gap", "f8", (3,)), ("dn", "f8", (3, 3)),
-         ("curved", "?"), ("v_x", "f8"), ("a_x", "f8"), ("jac", "?"), ("held", "?"),
+         ("curved", "?"), ("v_x", "f8"), ("a_x", "f8"), ("inv_h", "f8"), ("jac", "?"), ("held", "?"),
          ("full_loads", "u1", (len(FULL_KERNELS),)), ("reduced_loads", "u1", (len(REDUCED_KERNELS),))]
 _clash = {name for name, _ in LAYOUT.scratch} & {entry[0] for entry in POINT}
 if _clash:
@@ -106,6 +108,19 @@ def work(nloc):
     return Work(records(CONTEXT, 1), records(OUT, 1), np.zeros((nloc, 3)), np.zeros((nloc, 3, nloc, 3)))
 
 
+def inverse_step(factors):
+    """1 / h [1/s] of a step's factors (v_x, a_x, h); 0 for (v_x, a_x) or h <= 0 (statics: no step)."""
+    return 1.0 / factors[2] if len(factors) > 2 and factors[2] > 0.0 else 0.0
+
+
+@overload(inverse_step, jit_options={"cache": True})
+def _inverse_step(factors):
+    """``inverse_step`` compiled for either length of the factors' tuple."""
+    if len(factors) > 2:
+        return lambda factors: 1.0 / factors[2] if factors[2] > 0.0 else 0.0
+    return lambda factors: 0.0
+
+
 @njit(cache=True, inline="always", _nrt=False)
 def full_point(ctx, p, old, new, state, hold, out):
     """The full-point loads of the catalog the line has (``ctx.full_loads``), in order, into
@@ -151,7 +166,7 @@ def assemble_nodes(mesh, pts, work, state, factors, jac, rows, band):
     ``jac``, the 3 x 3 block A to the band's diagonal (unknown vertices only)."""
     X, V, Acc = state
     ctx, out = work.ctx[0], work.out[0]
-    ctx.v_x, ctx.a_x = factors
+    ctx.v_x, ctx.a_x, ctx.inv_h = factors[0], factors[1], inverse_step(factors)
     ctx.jac = jac
     kl, ku = mesh.kl, mesh.ku
     for k in range(mesh.nodes.shape[0]):
@@ -244,11 +259,12 @@ def _seabed(ctx, bed, e, g):
 def assemble(mesh, bed, pts, work, state, factors, jac, held, rows, band, elements):
     """Residual rows M A + G over ``elements`` added to ``rows`` (N, 3) and, with ``jac``, the
     banded tangent of the free unknowns added to ``band`` (LAPACK's layout); state: (X, V, A),
-    each (N, 3); factors: (v_x, a_x); held: the loads keep the branches the hold records hold
-    (Newton's corrections). Kernel, so over 12 arguments' worth of data comes in named tuples."""
+    each (N, 3); factors: (v_x, a_x) or (v_x, a_x, h) with the step's size h [s] (``inverse_step``);
+    held: the loads keep the branches the hold records hold (Newton's corrections). Kernel, so over
+    12 arguments' worth of data comes in named tuples."""
     X, V, Acc = state
     ctx, out, Re, Ke = work.ctx[0], work.out[0], work.Re, work.Ke
-    ctx.v_x, ctx.a_x = factors
+    ctx.v_x, ctx.a_x, ctx.inv_h = factors[0], factors[1], inverse_step(factors)
     ctx.jac, ctx.held = jac, held
     for k in range(pts.full_loads.shape[0]):
         ctx.full_loads[k] = pts.full_loads[k]

@@ -156,7 +156,7 @@ def _assemble_at(p, X, V, A, tangent, held, elements, rows):
         lost = project(p.projector, X, p.mesh, p.bed, tangent)
         if lost != 0:
             return lost
-    factors = (p.clock[0].v_x, p.clock[0].a_x)
+    factors = (p.clock[0].v_x, p.clock[0].a_x, p.clock[0].h)  # h: loads whose history evolves in time
     nb = p.rhs.shape[0]
     ld = 2 * p.mesh.kl + p.mesh.ku + 1
     band2 = p.band.reshape((nb, ld)).T  # the (ld, nb) column-major view the assembly writes

@@ -28,7 +28,7 @@ from cablefem.geometry.readers import MAX_COORDINATE, parse_number
 from cablefem.model.line import Line, LineType, Segment
 from cablefem.dynamics.registry import INTEGRATORS
 from cablefem.model.scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
-from cablefem.io import validate as v
+from cablefem.io import axial_input, validate as v
 from cablefem.io.currents import current_profile_setting
 from cablefem.io.moordyn_input import BODY_NO_MOTION_NOTE, NO_MOTION_NOTE, read_moordyn
 from cablefem.io.toml_network import body_motions, end, read_bodies, read_points
@@ -60,17 +60,20 @@ _POINT = v.limited(v.vector3, "coordinate")
 _LENGTH = v.limited(v.positive, "length")
 _ORDER = v.limited(v.whole, "order")
 _ELEMENTS = v.limited(v.whole, "nodes")
-ENVIRONMENT_KEYS = {"water_density": v.limited(v.positive, "water_density"),
-                    "gravity": v.limited(v.positive, "gravity"), "current": v.limited(v.vector3, "speed"),
+ENVIRONMENT_KEYS = {"water_density": v.limited(v.non_negative, "water_density"),
+                    "gravity": v.limited(v.non_negative, "gravity"), "current": v.limited(v.vector3, "speed"),
                     "current_profile": lambda value, key: value}  # a file or a table: _environment
 LINE_TYPE_KEYS = {"diameter": v.limited(v.positive, "diameter"), "mass": v.limited(v.positive, "mass"),
-                  "EA": v.limited(v.positive, "EA"), "damping": v.limited(v.non_negative, "damping_time"),
+                  "EA": axial_input.toml_stiffness, "damping": v.limited(v.non_negative, "damping_time"),
+                  "BA": axial_input.toml_damping, "EA_dynamic": v.limited(v.positive, "EA"),
+                  "EA_dynamic_slope": v.limited(v.non_negative, "slope"),
+                  "BA_dynamic": v.limited(v.non_negative, "internal_damping"), "syrope": axial_input.toml_syrope,
                   "Cd_normal": _COEFFICIENT, "Cd_tangential": _COEFFICIENT, "Ca_normal": _COEFFICIENT,
                   "Ca_tangential": _COEFFICIENT, "damping_when_slack": v.boolean,
                   "nominal_diameter": v.limited(v.positive, "diameter")}
 LINE_KEYS = {"name": v.text, "anchor": lambda value, key: value, "fairlead": lambda value, key: value,
              "segments": v.tables, "order": _ORDER, "quadrature_points": v.whole}  # an end: coordinates or a point's name (toml_network.end)
-SEGMENT_KEYS = {"type": v.text, "length": _LENGTH, "elements": _ELEMENTS}
+SEGMENT_KEYS = {"type": v.text, "length": _LENGTH, "elements": _ELEMENTS, "syrope": axial_input.toml_initial}
 CONTACT_KEYS = {"stiffness": v.limited(v.positive, "stiffness"),
                 "damping_ratio": v.limited(v.non_negative, "damping_ratio"),
                 "damping": v.limited(v.non_negative, "contact_damping"), "damping_when_opening": v.boolean}
@@ -216,7 +219,10 @@ def _line_types(raw):
         prefix = f"line_types.{name}"
         values = v.pick(v.table(entry, prefix), prefix, LINE_TYPE_KEYS, required=("diameter", "mass", "EA"))
         try:
-            types[name] = LineType(name, **values)
+            EA, law, beta = axial_input.law_of(values)
+            if beta is not None:
+                values["damping"] = beta
+            types[name] = LineType(name, EA=EA, axial=law, **values)
         except InputError as error:
             raise error.within(prefix=prefix) from None
     if not types:
@@ -244,7 +250,11 @@ def _lines(raw, types, points=None, bodies=None):
             if kind not in types:
                 raise InputError(f"unknown line type '{kind}'{v.suggest(kind, types)}; "
                                  f"defined in [line_types]: {', '.join(types)}", key=f"{seg_prefix}.type")
-            segments.append(Segment(types[kind], seg_values["length"], seg_values["elements"]))
+            try:
+                segments.append(Segment(types[kind], seg_values["length"], seg_values["elements"],
+                                        seg_values.get("syrope")))
+            except InputError as error:
+                raise error.within(prefix=seg_prefix) from None
         (anchor, a), (fairlead, b) = (end(values[key], f"{prefix}.{key}", points) for key in ("anchor", "fairlead"))
         anchor = anchor if a is None else point_position(points[a], bodies)
         fairlead = fairlead if b is None else point_position(points[b], bodies)

@@ -27,6 +27,8 @@ LIMITS = {
     "mass": (1e5, "kg/m", "the heaviest chains are ~1e3 kg/m"),
     "EA": (1e13, "N", "the stiffest real lines are ~1e10-1e11 N"),
     "damping_time": (1e6, "s", "beta is ~1e-3 to 1 s"),
+    "internal_damping": (1e13, "N s", "MoorDyn's BA of synthetic ropes' slow parts is ~1e9-1e11 N s"),
+    "slope": (1e4, "", "a rope's EA_D_Lm (dynamic stiffness per mean tension) is ~0.1-100"),
     "coefficient": (1e3, "", "drag and added-mass coefficients are ~0.1 to 10"),
     "water_density": (1e5, "kg/m^3", "sea water is 1025 kg/m^3"),
     "gravity": (1e3, "m/s^2", "g is 9.81 m/s^2"),

@@ -3,11 +3,11 @@
 A ``Joint`` (``cablefem.model.line``) of mass m, volume V, drag area CdA and added-mass coefficient Ca
 sits at one vertex x of the line. It adds the concentrated force
 
-    F = (-m g + rho g V phi(z)) e_z + 1/2 rho CdA |u| u - (m + Ca rho V) a,   u = U - v,
+    F = (-m g + rho g V phi(z)) e_z + F_ext + 1/2 rho CdA |u| u - (m + Ca rho V) a,   u = U - v,
 
-at that vertex: weight, buoyancy, drag in the relative velocity u (U the current, v the point's
-velocity) and the inertia of its mass and added mass, all isotropic as MoorDyn-C's points have
-them (Point.cpp). The buoyancy takes the volume as a sphere of radius R = (3 V / 4 pi)^(1/3)
+at that vertex: weight, buoyancy, a steady external force F_ext (MoorDyn's FX FY FZ, ``pointF``),
+drag in the relative velocity u (U the current, v the point's velocity) and the inertia of its mass
+and added mass, all isotropic as MoorDyn-C's points have them (Point.cpp). The buoyancy takes the volume as a sphere of radius R = (3 V / 4 pi)^(1/3)
 whose submerged fraction at centre height z is phi = h^2 (3 R - h) / (4 R^3), h = clip(R - z, 0,
 2 R): continuous and differentiable through the surface, so a buoy can float in equilibrium;
 fully submerged (z <= -R) it is MoorDyn's V rho g. The point has no seabed contact of its own: the
@@ -52,8 +52,9 @@ def sphere_integral(z, radius):
 
 class PointLoads:
     """The joints of one line: vertex index (k,) and per joint its dry weight m g [N], buoyancy
-    rho g V [N], sphere radius [m], drag factor rho CdA / 2 [kg/m] and inertia m + Ca rho V [kg];
-    the current is uniform (3,) [m/s] or a ``CurrentProfile`` (``profile``) at each point's height."""
+    rho g V [N], sphere radius [m], drag factor rho CdA / 2 [kg/m], inertia m + Ca rho V [kg] and
+    external force (k, 3) [N]; the current is uniform (3,) [m/s] or a ``CurrentProfile``
+    (``profile``) at each point's height."""
 
     name = "points"
     rule = "node"
@@ -68,6 +69,7 @@ class PointLoads:
         self.radius = np.cbrt(3.0 * volume / (4.0 * math.pi))
         self.drag = 0.5 * water_density * np.array([joint.CdA for joint in joints], dtype=float)
         self.inertia = mass + water_density * volume * np.array([joint.Ca for joint in joints], dtype=float)
+        self.external = np.array([joint.force for joint in joints], dtype=float).reshape(-1, 3)
         self.current = np.asarray(current, dtype=float)
         self.profile = profile
 
@@ -76,8 +78,8 @@ class PointLoads:
         z = state.r[2]
         k = z.shape[0]
         fraction, slope = sphere_fraction(z, self.radius)
-        force = np.zeros((3, k))
-        force[2] = -self.dry + self.buoyancy * fraction
+        force = self.external.T.copy()
+        force[2] += -self.dry + self.buoyancy * fraction
         terms = Terms(force=force)
         if jacobian:
             terms.force_r = np.zeros((3, 3, k))
@@ -104,16 +106,18 @@ class PointLoads:
 
     def energy(self, state):
         """Potential energy [J] (k,) of the points at their vertices (``state``: their kinematics,
-        (3, k)): weight m g z less buoyancy."""
+        (3, k)): weight m g z less buoyancy, less the external force's work F . r."""
         z = state.r[2]
-        return self.dry * z - self.buoyancy * sphere_integral(z, self.radius)
+        return self.dry * z - self.buoyancy * sphere_integral(z, self.radius) - np.einsum("kc,ck->k", self.external,
+                                                                                          state.r)
 
     def params(self):
         """The compiled face's parameters per point (``SPEC.params``), each (k,)."""
         k = len(self.dry)
         profile = no_profile(k) if self.profile is None else self.profile.params(k)
         return {"dry": self.dry, "buoyancy": self.buoyancy, "radius": self.radius, "drag": self.drag,
-                "inertia": self.inertia, "current": np.broadcast_to(self.current, (k, 3)), **profile}
+                "inertia": self.inertia, "external": self.external, "current": np.broadcast_to(self.current, (k, 3)),
+                **profile}
 
 
 @njit(cache=True, _nrt=False)
@@ -129,7 +133,9 @@ def point_point(ctx, p, old, new, state, hold, out):
         cube = 4.0 * radius * radius * radius
         fraction = h * h * (3.0 * radius - h) / cube
         slope = -3.0 * h * (2.0 * radius - h) / cube
-    out.f[2] += -q.dry + q.buoyancy * fraction
+    out.f[0] += q.external[0]
+    out.f[1] += q.external[1]
+    out.f[2] += q.external[2] - q.dry + q.buoyancy * fraction
     if ctx.jac:
         out.A[2, 2] += -q.buoyancy * slope
     if q.drag != 0.0:
@@ -181,5 +187,6 @@ def build(setting):
 
 
 SPEC = LoadSpec("points", "node", (("dry", "f8"), ("buoyancy", "f8"), ("radius", "f8"), ("drag", "f8"),
-                                   ("inertia", "f8"), ("current", "f8", (3,))) + PROFILE_FIELDS, point_point,
+                                   ("inertia", "f8"), ("external", "f8", (3,)), ("current", "f8", (3,)))
+                + PROFILE_FIELDS, point_point,
                 PointLoads, scratch=(("current", "f8", (3,)), ("slope", "f8", (3,))), build=build)

@@ -32,6 +32,7 @@ from cablefem.errors import ConvergenceError
 from cablefem.loads.points import PointLoads
 from cablefem.model.network import coupling, rotation, rotation_rates
 from cablefem.statics.continuation import axial_continuation
+from cablefem.statics.network_relax import NetworkPseudoTransient
 from cablefem.statics.newton import Halving, iterate, newton
 from cablefem.statics.solve import solve_static
 
@@ -117,7 +118,7 @@ class Network:
             return None
         env = self.scene.environment
         loads = None
-        if point.mass > 0.0 or point.volume > 0.0:
+        if point.mass > 0.0 or point.volume > 0.0 or np.any(point.force):
             loads = PointLoads([0], [point.joint], env.water_density, env.gravity)
         node = _Node(name, self.offsets[owner], None if point.body is None else point.position, loads)
         self.nodes[name] = node
@@ -279,6 +280,17 @@ def solve_network(scene, build, tolerance=1e-8, max_iterations=50):
     balance = _Balance(net, tolerance, max_iterations)
     (q, states, places), _, norm, history, converged = iterate(balance, (q, states, places), tolerance,
                                                                max_iterations, Halving())
+    if not converged:  # no equilibrium within Newton's reach: follow a damped pseudo-motion to one
+        q0, states0 = net.start(), [None] * len(scene.lines)
+        places0 = net.place(q0)
+        iterations += net.solve_strings(places0, states0, tolerance, max_iterations)
+        relaxed = iterate(balance, (q0, states0, places0), tolerance, 10 * max_iterations,
+                          NetworkPseudoTransient(net))
+        if relaxed[4]:
+            (q, states, places), _, norm, more, converged = relaxed
+            history += more
+        else:
+            norm = min(norm, relaxed[2])
     iterations += balance.iterations
     if not converged:
         raise ConvergenceError(
