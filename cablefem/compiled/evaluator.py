@@ -18,6 +18,7 @@ from scipy.linalg import lapack
 from cablefem.compiled import kernels
 from cablefem.geometry import Plane
 from cablefem.loads import catalog
+from cablefem.waves.compiled import water_of
 
 
 def pack_params(loads, nel):
@@ -104,6 +105,9 @@ class FusedEvaluator:
         if isinstance(system.seabed, Plane):
             self.plane = np.append(system.seabed.normal, system.seabed.offset).astype(float)
         self.unused = (np.zeros((1, 1)), np.zeros((1, 1, 3)), np.zeros((1, 1, 3)), np.zeros((1, 1, 3, 3)))
+        # the sea of a line whose loads see waves (the Morison load, points in waves); none otherwise
+        seas = [load.sea for load in system.loads if getattr(load, "sea", None) is not None]
+        self.water = water_of(seas[0] if seas else None)
         self.elements = np.arange(nel, dtype=np.int64)
 
     @classmethod
@@ -123,18 +127,19 @@ class FusedEvaluator:
                            np.ascontiguousarray(proj.gap_gradient.reshape(shape + (3,))),
                            np.ascontiguousarray(proj.direction_gradient.reshape(shape + (3, 3))))
 
-    def evaluate(self, X, V, A, v_x, a_x, jacobian=True, stick=False):
-        """Rows M A + G (N, 3) and, with ``jacobian``, the banded K + a_x M (LAPACK layout); with
-        ``stick``, the loads on the branches the hold records hold. The branch state and the trial
-        history of every point go to ``self.points``."""
+    def evaluate(self, X, V, A, v_x, a_x, jacobian=True, stick=False, t=0.0):
+        """Rows M A + G (N, 3) at time t [s] and, with ``jacobian``, the banded K + a_x M (LAPACK
+        layout); with ``stick``, the loads on the branches the hold records hold. The branch state and
+        the trial history of every point go to ``self.points``."""
         rows = np.zeros((self.system.fem.n_dofs, 3))
         # Fortran order, as LAPACK and the compiled steps hold it (one compiled kernel for both;
         # the unused band is 2 x 2, since numba would type a 1 x 1 array as C-ordered)
         band = np.zeros((2 * self.kl + self.ku + 1, self.n) if jacobian else (2, 2), order="F")
-        kernels.assemble(self.mesh, self.bed(X), self.points, self.work, (X, V, A), (float(v_x), float(a_x)),
+        state = (X, V, A, float(t))
+        kernels.assemble(self.mesh, self.bed(X), self.water, self.points, self.work, state, (float(v_x), float(a_x)),
                          bool(jacobian), bool(stick), rows, band, self.elements)
         if self.mesh.nodes.size:
-            kernels.assemble_nodes(self.mesh, self.points, self.work, (X, V, A), (float(v_x), float(a_x)),
+            kernels.assemble_nodes(self.mesh, self.water, self.points, self.work, state, (float(v_x), float(a_x)),
                                    bool(jacobian), rows, band)
         return rows, (band if jacobian else None)
 

@@ -228,8 +228,8 @@ def _rows(p, k, g):
     nb = p.rhs.shape[0]
     band2 = p.band.reshape((nb, 2 * p.mesh.kl + p.mesh.ku + 1)).T  # unused without a tangent
     p.base[:] = 0.0
-    kernels.assemble(p.mesh, p.bed, p.pts, p.work, (p.X1, p.V1, p.A1), (clock.v_x, clock.a_x), policy.FLAG[0],
-                     policy.FLAG[0], p.base, band2, p.end_elements)
+    kernels.assemble(p.mesh, p.bed, p.water, p.pts, p.work, (p.X1, p.V1, p.A1, clock.t + clock.h),
+                     (clock.v_x, clock.a_x), policy.FLAG[0], policy.FLAG[0], p.base, band2, p.end_elements)
     return True
 
 

@@ -94,7 +94,7 @@ class Marcher:
         self.factors["auto_left"] = integ.full_steps_left  # "auto" Newton's state, shared with the Python ops
         self.factors["contraction"] = integ.contraction
         ev, fem = self.ev, integ.fem
-        return Problem(self.settings, ev.mesh, self.bed, ev.points, ev.work, self.projector(integ.X),
+        return Problem(self.settings, ev.mesh, self.bed, ev.water, ev.points, ev.work, self.projector(integ.X),
                        fem.free_dofs.astype(np.int64), ev.free_order, ev.elements, self.end_elements,
                        int(fem.anchor_dof), int(fem.fairlead_dof), integ.scale, *state, np.zeros_like(integ.X),
                        *self.rows, *self.vectors, *self.bands, ev.base_full, ev.base_reduced, self.keeps,

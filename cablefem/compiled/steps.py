@@ -56,7 +56,7 @@ FACTORS = np.dtype([("v_x", "f8"), ("auto_left", "f8"), ("contraction", "f8")])
 #: commit the trial history; the clock (CLOCK), the factors' key (FACTORS) and the scheme (SCHEME);
 #: counters (policy.COUNTERS); the anchor and the fairlead at the end of each step (m, 2, 3) and at
 #: its splits (m, FRACTIONS - 1, 2, 3), and at the end of the attempt (2, 3) (an end that is not prescribed, ``Line.prescribed``, is an unknown like the others)
-Problem = namedtuple("Problem", "settings mesh bed pts work projector free_nodes free_order all_elements "
+Problem = namedtuple("Problem", "settings mesh bed water pts work projector free_nodes free_order all_elements "
                                 "end_elements anchor_node fairlead_node scale "
                                 "X V A Xp Vp prediction rows X1 V1 A1 X_alpha guess x_hist v_hist base "
                                 "rhs step original band lu ipiv multipliers base_full base_reduced keeps commits "
@@ -124,10 +124,10 @@ def _point(prob):
 
 
 @njit(cache=True, inline="always", _nrt=False)  # a call would copy the Problem's fields once more
-def _assemble_at(prob, X, V, A, tangent, held, elements):
-    """M A + G at (X, V, A) into ``prob.rows`` over ``elements`` and, with ``tangent``, its banded
-    tangent into ``prob.band`` (both zeroed first), the seabed projected first unless it is a plane.
-    Returns the projection's status (0, or the points the walk did not place)."""
+def _assemble_at(prob, X, V, A, time, tangent, held, elements):
+    """M A + G at (X, V, A) and ``time`` [s] into ``prob.rows`` over ``elements`` and, with
+    ``tangent``, its banded tangent into ``prob.band`` (both zeroed first), the seabed projected first
+    unless it is a plane. Returns the projection's status (0, or the points the walk did not place)."""
     if prob.projector.kind != PLANE:
         lost = project(prob.projector, X, prob.mesh, prob.bed, tangent)
         if lost != 0:
@@ -139,19 +139,25 @@ def _assemble_at(prob, X, V, A, tangent, held, elements):
     prob.rows[:] = 0.0
     if tangent:
         band2.T[:] = 0.0  # the contiguous (nb, ld) view: a memset, not a strided walk
-    kernels.assemble(prob.mesh, prob.bed, prob.pts, prob.work, (X, V, A), factors, tangent, held, prob.rows, band2,
-                     elements)
+    kernels.assemble(prob.mesh, prob.bed, prob.water, prob.pts, prob.work, (X, V, A, time), factors, tangent, held,
+                     prob.rows, band2, elements)
     if prob.mesh.nodes.shape[0]:
-        kernels.assemble_nodes(prob.mesh, prob.pts, prob.work, (X, V, A), factors, tangent, prob.rows, band2)
+        kernels.assemble_nodes(prob.mesh, prob.water, prob.pts, prob.work, (X, V, A, time), factors, tangent,
+                               prob.rows, band2)
     return 0
 
 
 @njit(cache=True, _nrt=False)
 def _assemble(prob, tangent, held, elements):
-    """The step residual at the trial point over ``elements`` (``_assemble_at``), counted."""
+    """The step residual at the trial point over ``elements`` (``_assemble_at``), counted: at t + h
+    (BDF2) or t + (1 - alpha_f) h (generalised-alpha's ``t_eval``)."""
     _point(prob)
-    X = prob.X1 if prob.scheme[0].kind == BDF2 else prob.X_alpha
-    lost = _assemble_at(prob, X, prob.V1, prob.A1, tangent, held, elements)
+    clock, scheme = prob.clock[0], prob.scheme[0]
+    if scheme.kind == BDF2:
+        X, time = prob.X1, clock.t + clock.h
+    else:
+        X, time = prob.X_alpha, clock.t + (1.0 - scheme.alpha_f) * clock.h
+    lost = _assemble_at(prob, X, prob.V1, prob.A1, time, tangent, held, elements)
     if lost == 0:
         prob.counters[policy.NFEV] += 1
     return lost
@@ -389,16 +395,18 @@ def reactions(prob, forces, k):
     evaluated at the state over the end elements first, uncounted (as ``Integrator.reactions``).
     Returns the projection's status (0, or the points the walk did not place)."""
     if prob.scheme[0].kind != BDF2:
-        lost = _assemble_at(prob, prob.X, prob.V, prob.A, policy.FLAG[0], policy.FLAG[0], prob.end_elements)
+        lost = _assemble_at(prob, prob.X, prob.V, prob.A, prob.clock[0].t, policy.FLAG[0], policy.FLAG[0],
+                            prob.end_elements)
         if lost != 0:
             return lost
     for a in range(3):
         forces[k, 0, a] = -prob.rows[prob.fairlead_node, a]
         forces[k, 1, a] = -prob.rows[prob.anchor_node, a]
     if prob.mesh.nodes.shape[0]:  # a point riding on an end: the line's own force leaves its load out
-        kernels.subtract_node_loads(prob.mesh, prob.pts, prob.work, (prob.X, prob.V, prob.A), prob.fairlead_node,
+        state = (prob.X, prob.V, prob.A, prob.clock[0].t)
+        kernels.subtract_node_loads(prob.mesh, prob.water, prob.pts, prob.work, state, prob.fairlead_node,
                                     forces[k, 0])
-        kernels.subtract_node_loads(prob.mesh, prob.pts, prob.work, (prob.X, prob.V, prob.A), prob.anchor_node,
+        kernels.subtract_node_loads(prob.mesh, prob.water, prob.pts, prob.work, state, prob.anchor_node,
                                     forces[k, 1])
     return 0
 

@@ -201,9 +201,9 @@ class Integrator:
         X, V = self.X.copy(), self.V.copy()
         self.set_boundary(X, V, A, self.t)
         if self.fused is not None:  # the same, compiled: the mass is the tangent's a_x part
-            rows, with_mass = self.fused.evaluate(X, V, A, 0.0, 1.0)
+            rows, with_mass = self.fused.evaluate(X, V, A, 0.0, 1.0, t=self.t)
             if np.linalg.norm(rows[fem.free_dofs]) > 1e-12 * self.scale:
-                mass = with_mass - self.fused.evaluate(X, V, A, 0.0, 0.0)[1]
+                mass = with_mass - self.fused.evaluate(X, V, A, 0.0, 0.0, t=self.t)[1]
                 factors = self.fused.factorize(mass)
                 if factors is None:
                     raise ConvergenceError(f"{self.name}: the mass matrix is singular at t = {self.t:.6g} s "
@@ -227,7 +227,7 @@ class Integrator:
         loads and mass in the representation ``increment`` factors (``stick``: held branches)."""
         if self.fused is not None:
             self.nfev += 1
-            return self.fused.evaluate(X, V, A, v_x, a_x, jacobian, stick)
+            return self.fused.evaluate(X, V, A, v_x, a_x, jacobian, stick, t)
         residual, blocks = self.evaluate(X, V, A, t, v_x, a_x, jacobian)
         return residual + self.inertia(A), blocks
 
