@@ -2,10 +2,13 @@
 of ``cablefem.waves``: cosh and sinh as they are written, the wave number from scipy's root finder,
 the stretched height from its definition. The study compares cablefem's kinematics with these."""
 
+from functools import lru_cache
+
 import numpy as np
 from scipy.optimize import brentq
 
 
+@lru_cache(maxsize=None)
 def wave_number(omega, depth, gravity):
     """k [1/m] of omega^2 = g k tanh(k h), by bracketing (brentq)."""
     return brentq(lambda k: gravity * k * np.tanh(k * depth) - omega ** 2, 1e-12, 10.0 * omega ** 2 / gravity + 10.0,

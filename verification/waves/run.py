@@ -7,7 +7,9 @@ the tests assert on.
     below and above the mean level, for Wheeler, vertical and no stretching (``kinematics.py``);
 (b) the compiled face against the numpy face, the exact gradients against central differences;
 (c) irregular JONSWAP seas: m0 of many seeds' records against Hs^2 / 16, the spectral peak at Tp
-    (``spectrum.py``); (d) cos-2s spreading of the components' headings.
+    (``spectrum.py``); (d) cos-2s spreading of the components' headings;
+(e) a fixed, very stiff horizontal line in regular waves: its end reactions against the integral of
+    the Morison force along it (``morison.py``).
 """
 
 import argparse
@@ -18,6 +20,7 @@ import numpy as np
 
 from cablefem.study import provenance, stamp, write_json
 from verification.waves.kinematics import against_closed_forms, faces_and_gradients
+from verification.waves.morison import check as morison_check
 from verification.waves.spectrum import spectrum_check, spreading_check
 
 HERE = Path(__file__).resolve().parent
@@ -30,6 +33,8 @@ def run(fast=False):
     seeds = range(1, 21) if fast else range(1, 101)
     results = {"closed_forms": against_closed_forms(rng), "faces": faces_and_gradients(rng),
                "spectrum": spectrum_check(seeds, 3600.0 if fast else 10800.0), "spreading": spreading_check()}
+    cases = [("bdf2", 1)] if fast else [("bdf2", 1), ("bdf2", 2), ("generalized-alpha", 1), ("generalized-alpha", 2)]
+    results["morison"] = [morison_check(10, order, integrator) for integrator, order in cases]
     results["wall_time_s"] = time.perf_counter() - clock
     results["provenance"] = stamp(started)
     return results
@@ -54,6 +59,10 @@ def report(results):
     print("(d) cos-2s spreading: mean cos(beta - beta_0) of 2000 components")
     for row in results["spreading"]:
         print(f"    s = {row['s']:4g}: {row['mean_cos']:.4f} against s/(s+1) = {row['expected']:.4f}")
+    print("(e) stiff line in regular waves: end reactions against the lever rule of the Morison force")
+    for row in results["morison"]:
+        print(f"    {row['integrator']:18s} P{row['order']} x {row['elements']}: largest difference "
+              f"{row['error']:.1e} of the largest reaction ({row['largest_reaction_N']:.0f} N), {row['times']} times")
 
 
 def main(argv=None):
