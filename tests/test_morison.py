@@ -30,12 +30,12 @@ def test_a_stiff_line_in_waves_carries_the_integral_of_the_morison_force_to_its_
     assert result["error"] < 1e-4  # the issue's target; measured 1.6e-6 (verification/waves)
 
 
-def wavy_scene(stretching="wheeler", fairlead_z=-10.0):
+def wavy_scene(stretching="wheeler", fairlead_z=-10.0, depth=100.0):
     """A catenary from 100 m of water to a fixed fairlead, a buoy at the joint of its two segments, in
-    a two-component sea with a uniform current."""
+    a two-component sea over ``depth`` with a uniform current."""
     segments = (Segment(CHAIN, 110.0, 11), Segment(CHAIN, 90.0, 9))
     line = Line("wavy", [-150.0, 0.0, -100.0], [0.0, 0.0, fairlead_z], segments, 1, joints=((1, BUOY),))
-    sea = Sea.from_components([2.0, 0.8], [2 * np.pi / 9.0, 1.2], [0.3, -0.4], [0.0, 1.0], 100.0,
+    sea = Sea.from_components([2.0, 0.8], [2 * np.pi / 9.0, 1.2], [0.3, -0.4], [0.0, 1.0], depth,
                               stretching=stretching, ramp=5.0)
     return Scene("wavy", [line], Horizontal(100.0), environment=Environment(current=(0.3, 0.1, 0.0), waves=sea),
                  solver=Solver(dt=0.05))
@@ -96,3 +96,25 @@ def test_a_scene_without_waves_has_no_morison_load_and_no_water():
     wavy = replace(scene, environment=replace(scene.environment, waves=Sea.regular(0.05, 2.0, depth=0.8)))
     assert {load.name for load in build_system(wavy, wavy.lines[0]).loads} >= {"morison"}
     assert not build_system(wavy, wavy.lines[0]).has("drag")
+
+
+def test_kinematics_kept_within_a_step_err_at_second_order_in_the_displacement(rng):
+    """The compiled path sums the components at the first evaluation at a time and takes the water's
+    motion to first order in the points' displacement after (``cablefem.waves.compiled.water_cached``):
+    against a fresh sum, the rows differ as the displacement squared. (The waves see 120 m of water
+    here: at the depth of the sea the kinematics are held, a kink the chain on the seabed would cross.)"""
+    scene = wavy_scene(depth=120.0)
+    system = build_system(scene, scene.lines[0])
+    (X,), _ = start_states(scene, systems=[system])
+    V, A = 0.1 * rng.standard_normal(X.shape), 0.1 * rng.standard_normal(X.shape)
+    direction = rng.standard_normal(X.shape)
+    kept = FusedEvaluator.for_system(system, system.props["mass"])
+    kept.evaluate(X, V, A, 150.0, 2.2e4, t=7.0)  # the sums at X
+    errors = []
+    for size in (0.1, 0.01):
+        moved = X + size * direction
+        fresh = FusedEvaluator.for_system(system, system.props["mass"])
+        exact = fresh.evaluate(moved, V, A, 150.0, 2.2e4, jacobian=False, t=7.0)[0]
+        errors.append(np.abs(kept.evaluate(moved, V, A, 150.0, 2.2e4, jacobian=False, t=7.0)[0] - exact).max())
+    assert errors[1] < errors[0] / 70.0  # second order: a tenth of the displacement, a hundredth of the error
+    assert errors[0] > 0.0 and errors[1] < 1e-6 * np.abs(exact).max()

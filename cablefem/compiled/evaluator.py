@@ -107,7 +107,7 @@ class FusedEvaluator:
         self.unused = (np.zeros((1, 1)), np.zeros((1, 1, 3)), np.zeros((1, 1, 3)), np.zeros((1, 1, 3, 3)))
         # the sea of a line whose loads see waves (the Morison load, points in waves); none otherwise
         seas = [load.sea for load in system.loads if getattr(load, "sea", None) is not None]
-        self.water = water_of(seas[0] if seas else None)
+        self.water = water_of(seas[0] if seas else None, fem.n_elements * fem.full.dx.shape[1] + len(vertices))
         self.elements = np.arange(nel, dtype=np.int64)
 
     @classmethod

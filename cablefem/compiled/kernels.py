@@ -33,7 +33,7 @@ from numba import uint64 as _index
 from numba.core.errors import NumbaExperimentalFeatureWarning
 
 from cablefem.loads import catalog
-from cablefem.waves.compiled import NONE as NO_WATER, water_at
+from cablefem.waves.compiled import NONE as NO_WATER, water_cached
 
 # numba marks the catalog's tuple of functions "first-class", an experimental feature; literal_unroll
 # resolves each call statically (measured: as fast as direct calls)
@@ -164,8 +164,8 @@ def assemble_nodes(mesh, water, pts, work, state, factors, jac, rows, band):
         i = mesh.nodes[k]
         for a in range(3):
             ctx.r[a], ctx.v[a], ctx.a[a] = X[i, a], V[i, a], Acc[i, a]
-        if water.kind != NO_WATER:
-            _water(ctx, water)
+        if water.kind != NO_WATER:  # the cache's rows after the full points'
+            _water(ctx, water, mesh.dx.shape[0] * mesh.dx.shape[1] + k)
         node_point(ctx, pts.nodes[k], out)
         for a in range(3):
             rows[i, a] -= out.f[a]
@@ -192,7 +192,7 @@ def subtract_node_loads(mesh, water, pts, work, state, vertex, force):
         for a in range(3):
             ctx.r[a], ctx.v[a], ctx.a[a] = X[vertex, a], V[vertex, a], Acc[vertex, a]
         if water.kind != NO_WATER:
-            _water(ctx, water)
+            _water(ctx, water, mesh.dx.shape[0] * mesh.dx.shape[1] + k)
         node_point(ctx, pts.nodes[k], out)
         for a in range(3):
             force[a] -= out.f[a]
@@ -251,11 +251,11 @@ def _seabed(ctx, bed, e, g):
 
 
 @njit(cache=True, _nrt=False)
-def _water(ctx, water):
-    """The water's kinematics at the point ``ctx.r`` and time ``ctx.time`` into the context
-    (``cablefem.waves.compiled.water_at``; gradients with a tangent)."""
-    ctx.eta, ctx.wet = water_at(water, ctx.r, ctx.time, ctx.water_u, ctx.water_a, ctx.water_du, ctx.water_da,
-                                ctx.jac)
+def _water(ctx, water, index):
+    """The water's kinematics at the point ``ctx.r`` and time ``ctx.time`` into the context, the point's
+    row ``index`` of the water's cache (``cablefem.waves.compiled.water_cached``)."""
+    ctx.eta, ctx.wet = water_cached(water, index, ctx.r, ctx.time, ctx.water_u, ctx.water_a, ctx.water_du,
+                                    ctx.water_da)
 
 
 @njit(cache=True, _nrt=False)
@@ -284,7 +284,7 @@ def assemble(mesh, bed, water, pts, work, state, factors, jac, held, rows, band,
             _kinematics(ctx, mesh, X, V, Acc, e, g)
             _seabed(ctx, bed, e, g)
             if water.kind != NO_WATER:
-                _water(ctx, water)
+                _water(ctx, water, element * nq + g)
             full_point(ctx, p, pts.full_old[e, g], pts.full_new[e, g], pts.full_state[e, g],
                        pts.full_hold[e, g], out)
             _add_full(Re, Ke, mesh, out, ctx, e, g, jac)
