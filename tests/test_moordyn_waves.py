@@ -106,3 +106,22 @@ def test_bad_moordyn_waves_give_one_line(tmp_path, capsys, option, files, key, r
     case = Case("waves", f"{key}: {reason}", files={"lines.dat": text, **files}, argv=("static", "{tmp}/lines.dat"),
                 file="lines.dat")
     assert_refused(case, tmp_path, capsys)
+
+
+def test_a_seafloor_file_is_found_from_the_working_directory_first_then_beside_the_file(tmp_path, monkeypatch):
+    """MoorDyn-C opens a SeafloorFile by the name as given, from the working directory (its tests name
+    theirs from their Mooring folder); cablefem too, and otherwise beside the MoorDyn file."""
+    from bad_input import GRID_C
+
+    text = edit(BASE_MOORDYN, {"850.0     WtrDpth": "Mooring/bathy.txt SeafloorFile"})
+    beside = tmp_path / "run" / "Mooring"
+    beside.mkdir(parents=True)
+    (beside / "lines.dat").write_text(text)
+    (beside / "Mooring").mkdir()
+    deep = GRID_C.replace("-150\n", "-850\n")  # the file's lines are in 850 m of water
+    (beside / "Mooring" / "bathy.txt").write_text(deep)  # beside the file: Mooring/bathy.txt
+    monkeypatch.chdir(tmp_path)
+    assert load_scene(str(beside / "lines.dat")).seabed.depth == 850.0
+    (tmp_path / "Mooring").mkdir()  # from the working directory: Mooring/bathy.txt there wins
+    (tmp_path / "Mooring" / "bathy.txt").write_text(GRID_C.replace("-150\n", "-860\n"))
+    assert load_scene(str(beside / "lines.dat")).seabed.depth == 860.0

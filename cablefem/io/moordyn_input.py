@@ -183,6 +183,15 @@ def _waves(path, options, numbers, depth, gravity, read, notes):
     return sea
 
 
+def named_file(value, key, folder):
+    """The path of a data file a MoorDyn file names (``SeafloorFile``): where MoorDyn-C opens it, the
+    name as given, from the working directory; otherwise beside the file (``folder``)."""
+    here = os.path.abspath(os.path.expanduser(value))
+    if not os.path.isabs(value) and os.path.isfile(here):
+        return here
+    return v.existing_file(value, key, folder)
+
+
 def damping_time(ba, ea, mass, length, segments):
     """beta [s] in T = EA (e + beta de/dt) from MoorDyn's BA [N s] or -zeta (per-segment critical ratio)."""
     if ba >= 0:
@@ -229,7 +238,7 @@ def _build(path, text, simplify=True, waves=True):
     lines, keys = _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, notes)
     if seafloor is not None:
         keys["seabed"] = (path, _at(seafloor[1], "OPTIONS.SeafloorFile"))
-        file = v.existing_file(seafloor[0], keys["seabed"][1], os.path.dirname(path))
+        file = named_file(seafloor[0], keys["seabed"][1], os.path.dirname(path))
         seabed = v.read_seabed_file(file, "grid", keys["seabed"][1])
     elif "wtrdpth" in options:
         keys["seabed"] = (path, _at(options_rows["wtrdpth"], "OPTIONS.WtrDpth"))
