@@ -9,6 +9,8 @@ of the process per run, rounds alternating between the cases, medians over the r
 ratio to still water's run in the same round.
 
     python -m benchmarks.waves_cost [--duration T] [--rounds N] [--elements N] [--every S] [--json FILE]
+
+Last measured: verification/waves/README.md, "What waves cost a run".
 """
 
 import argparse
