@@ -140,8 +140,6 @@ SUBPROCESS = [
     ("EA 1e308", {"EA = 3.15e9": "EA = 1e308"}, ["--out", "{tmp}/o"], "line_types.chain.EA"),
     ("out is a file", {}, ["--out", "{tmp}/scene.toml"], "exists and is not a folder"),
     ("anchor above water", {"anchor = [-560.0, 0.0, -150.0]": "anchor = [-560.0, 0.0, 50.0]"}, [], "lines[0].anchor"),
-    ("adaptive generalised-alpha", {'integrator = "bdf2"': 'integrator = "generalized-alpha"\nadaptive = true'},
-     ["--out", "{tmp}/o"], "solver.adaptive"),
 ]
 
 

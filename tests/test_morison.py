@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from cablefem.compiled.evaluator import FusedEvaluator
-from cablefem.dynamics.schemes import BDF2, GeneralizedAlpha
+from cablefem.dynamics.bdf2 import BDF2
+from cablefem.dynamics.generalized_alpha import GeneralizedAlpha
 from cablefem.fem.system import build_system
 from cablefem.geometry import Horizontal
 from cablefem.model.builtin import flume_scene
@@ -53,7 +54,7 @@ def test_compiled_steps_in_waves_equal_the_python_steps(scheme):
         integ = scheme(build_system(case, case.lines[0]), X0, boundary_path(case, case.lines[0]), dt=0.05,
                        tolerance=1e-8)
         if not compiled_steps:
-            integ.marcher = None  # the kernel per evaluation, Newton in Python
+            integ.stepper().packer = None  # the kernel per evaluation, Newton in Python
         forces = integ.march(0.05 * np.arange(1, 121))
         runs.append((forces, integ.X, integ.statistics()))
     (f1, X1, s1), (f2, X2, s2), (f3, _, _) = runs
