@@ -121,7 +121,7 @@ def cmd_sweep(args):
 
 
 def cmd_plot(args):
-    """``cablefem plot OUT [--png FILE] [--y STAT --x KEY --by KEY]``: a run, or a sweep's table."""
+    """``cablefem plot OUT [--png FILE] [--elevation] [--y STAT --x KEY --by KEY]``: a run, or a sweep's table."""
     from cablefem.io.output import prepare_file
 
     if args.png:
@@ -133,7 +133,7 @@ def cmd_plot(args):
     else:
         from cablefem.post import plot_tensions
 
-        path = plot_tensions(args.out, args.png)
+        path = plot_tensions(args.out, args.png, elevation=args.elevation)
     print(f"wrote {path}")
 
 
@@ -176,6 +176,8 @@ def build_parser():
     plot = commands.add_parser("plot", help="tension against time of a run, or a statistic of a sweep")
     plot.add_argument("out", metavar="OUT", help="output folder of a run or of a sweep (or a sweep's table)")
     plot.add_argument("--png", metavar="FILE", help="image to write (default: OUT/tensions.png, OUT/sweep.png)")
+    plot.add_argument("--elevation", action="store_true", help="a run in waves: the elevation at the origin "
+                      "above the tensions")
     plot.add_argument("--y", metavar="STAT", help="sweep: the column to draw (default: the first line's "
                       "fairlead_tension_max, or fairlead_tension for static cases)")
     plot.add_argument("--x", metavar="KEY", help="sweep: the parameter along x (default: the first varied one)")

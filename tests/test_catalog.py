@@ -17,6 +17,8 @@ from cablefem.loads.current import CurrentProfile
 from cablefem.loads.friction import IsotropicFriction
 from cablefem.model.scene import Contact, Friction
 from cablefem.fem.system import LineSystem
+from cablefem.loads.morison import Morison
+from cablefem.waves import Sea
 
 from rope_cases import rope_state, rope_system
 from test_loads import (assert_tangent_matches_finite_differences, line_state, soil_state, soil_system,
@@ -25,12 +27,16 @@ from test_loads import (assert_tangent_matches_finite_differences, line_state, s
 #: the rope's laws besides its table with a constant BA (``tests/rope_cases.py``), and MoorDyn-C's slack law
 ROPE_VARIANTS = ["damping_table", "viscoelastic", "load_dependent", "syrope", "syrope_exp", "slack"]
 
-#: every catalog load, the two that see the current once more in a current varying with depth, and
-#: the contact and its friction with the seabed's damper acting on points moving out too
+#: every catalog load, the two that see the current once more in a current varying with depth, the
+#: contact and its friction with the seabed's damper acting on points moving out too, in waves (the
+#: Morison load is the line's in waves; points see the waves too), and the rope's laws
 NAMES = [spec.name for spec in catalog.CATALOG] + ["drag+profile", "points+profile", "contact+opening",
-                                                   "friction+opening"] + [f"rope+{kind}" for kind in ROPE_VARIANTS]
+                                                   "friction+opening", "morison+profile", "points+waves",
+                                                   "points+waves-profile"] + [f"rope+{kind}" for kind in ROPE_VARIANTS]
 #: the step of the tests' evaluations [s]: a rope's slow strain steps over it (``cablefem.loads.rope``)
 H = 0.05
+#: two components over the test line (its top at the surface: some points there are above the crests)
+SEA = Sea.from_components([1.5, 0.6], [2 * np.pi / 9.0, 1.1], [0.35, -0.5], [0.4, 2.0], 100.0)
 #: a sheared current over the test line's heights (about -100 m to the surface, the clump near the
 #: seabed and the buoy at the surface both on a sloping piece), bending at four heights
 PROFILE = CurrentProfile.from_arrays([-130.0, -70.0, -30.0, 5.0],
@@ -51,7 +57,7 @@ def one_load_system(name, order):
         system = rope_system("table" if variant in ("", "slack") else variant, order, slack=variant == "slack")
         system.loads = [system.load("rope")]
         return system
-    profile = variant == "profile"
+    profile = variant in ("profile", "waves-profile")
     system = (soil_system(SEABED, order) if name == "soil"
               else system_with_all_loads(SEABED, LAW, order, profile=PROFILE if profile else None))
     if name == "points":
@@ -61,7 +67,14 @@ def one_load_system(name, order):
         joints = ((1, Joint("clump", mass=2e3, volume=0.3, CdA=1.5, Ca=1.0)),
                   (2, Joint("buoy", mass=100.0, volume=2.0, CdA=2.0, Ca=0.5)))
         line = replace(line, segments=(half, half), joints=joints, prescribed=(True, False))
-        system = LineSystem(line, SEABED, Contact(stiffness=0.0), system.environment)
+        environment = replace(system.environment, waves=SEA if variant.startswith("waves") else None)
+        system = LineSystem(line, SEABED, Contact(stiffness=0.0), environment, dynamic=True)
+    if name == "morison":
+        env, props = system.environment, system.props
+        system.loads.append(Morison(props["diameter"], np.full(len(props["diameter"]), 2.0),
+                                    np.full(len(props["diameter"]), 0.4), np.full(len(props["diameter"]), 1.0),
+                                    np.full(len(props["diameter"]), 0.5), env.water_density, SEA, env.current,
+                                    profile=env.current_profile))
     # the last of each: the test's own contact (the catalog's has no stiffness here)
     system.loads = [[load for load in system.loads if catalog.spec_of(load).name == wanted][-1]
                     for wanted in catalog.spec(name).reads + (name,)]

@@ -359,7 +359,7 @@ BAD_MOORDYN = [
     ({"3      Coupled": "3      Turbine1"}, "line 13: POINTS.3.Attachment", "FAST.Farm turbine"),
     ({"-14.0    0      0        0     0": "-14.0    0      0   nan 0 5e3  0     0"}, "line 13: POINTS.3.FX",
      "must be finite"),
-    ({"850.0     WtrDpth": "850.0     WtrDpth\n1   WaveKin"}, "line 22: OPTIONS.WaveKin", "set WaveKin 0"),
+    ({"850.0     WtrDpth": "850.0     WtrDpth\n1   WaveKin"}, "line 22: OPTIONS.WaveKin", "give the waves as [waves]"),
     ({"850.0     WtrDpth": "850.0     WtrDpth\n2   Currents"}, "line 22: OPTIONS.Currents",
      "a time-varying or gridded current (Currents 2 to 5): Currents 2 is not supported"),
     ({"850.0     WtrDpth": "850.0     WtrDpth\n1   Currents"}, "line 22: OPTIONS.Currents (current_profile.txt)",

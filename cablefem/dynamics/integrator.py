@@ -198,7 +198,7 @@ class Integrator:
         rows, with_mass = ev.evaluate(X, V, A, 0.0, 1.0, t=self.t)
         if np.linalg.norm(rows[fem.free_dofs]) <= 1e-12 * self.scale:
             return A
-        factors = ev.mass_factors(X, V, A, with_mass)
+        factors = ev.mass_factors(X, V, A, with_mass, self.t)
         if factors is None:
             raise ConvergenceError(f"{self.name}: the mass matrix is singular at t = {self.t:.6g} s "
                                    "(check the line's mass and added-mass coefficients)")

@@ -21,8 +21,8 @@ and solve for the step of the free DOFs. Two evaluators give the same numbers to
     factorize(tangent, scale=1.0) -> factors, or None if singular
     solve(factors, rows) -> step (N_free, 3) of the free DOFs for the residual ``rows``
     solve_many(factors, rows) -> steps (m, N_free, 3) for m residuals (m, N, 3)
-    mass_factors(X, V, A, tangent) -> factors of the free rows' mass (M + added mass) at a state,
-                                      ``tangent`` the one ``evaluate`` gave with v_x = 0, a_x = 1
+    mass_factors(X, V, A, tangent, t=0.0) -> factors of the free rows' mass (M + added mass) at a state,
+                                             ``tangent`` the one ``evaluate`` gave with v_x = 0, a_x = 1
     inertia(A) -> rows M A (N, 3)
     keep(), hold(again) -> bool, release()   the branch holds of Newton's corrections (the numpy
                                              loads hold no branch: ``hold`` is False)
@@ -106,10 +106,10 @@ class NumpyEvaluator(Evaluator):
     def solve_many(self, factors, rows):
         return np.array([self.solve(factors, part) for part in rows])
 
-    def mass_factors(self, X, V, A, tangent):
+    def mass_factors(self, X, V, A, tangent, t=0.0):
         system = self.system
         blocks, _ = tangent
-        static = system.evaluate(system.state(X, V, A), jacobian=True)[1]
+        static = system.evaluate(system.state(X, V, A, t), jacobian=True)[1]
         try:
             return spla.splu((system.matrix(blocks) - system.matrix(static) + self.M_free).tocsc())
         except RuntimeError:

@@ -3,7 +3,7 @@
 Sections read: LINE TYPES (v2 columns, or the v1 header read by position as MoorDyn-C reads it),
 BODIES, POINTS, LINES, OPTIONS (value first: ``850 WtrDpth``) and OUTPUTS (channel names, up to
 ``END``, recorded and ignored). Rows before the first recognised ``---`` header are the title
-(``moordyn_sections`` cuts the file). What cablefem does not read (RODS, wave kinematics, nonlinear
+(``moordyn_sections`` cuts the file). What cablefem does not read (RODS, WaveKin 1, nonlinear
 EA, ...) is refused with what to do instead, from the one list ``moordyn_sections.REFUSED``. Numbers
 and IDs are ASCII (``str.isdigit`` and ``float`` would take other scripts' digits) and within the
 sane limits of ``validate.LIMITS``.
@@ -15,6 +15,7 @@ Mapping (each conversion checked against the MoorDyn 2.7 library, docs/scene.md)
   first. Junctions of three or more line ends and free bodies are read as they are: the statics
   solve them (``cablefem.statics.network``), a run refuses what it cannot step (``network.check_no_coupling``);
 - ``Currents 1``: the steady profile of ``current_profile.txt`` beside the file (``io.currents``);
+- ``WaveKin`` 2, 3 and 7: the waves of their files beside the file (``io.moordyn_waves``);
 - BA >= 0 is the internal damping coefficient [N s]: beta = BA / EA [s];
   BA < 0 is -zeta, MoorDyn's BA = zeta (UnstrLen / NumSegs) sqrt(EA m);
 - CdAx refers to the surface area pi d l, desire2023 Eq. 3 to d: Cd_tangential = pi CdAx;
@@ -35,6 +36,8 @@ import os
 import re
 from dataclasses import replace
 
+import numpy as np
+
 from cablefem.errors import InputError
 from cablefem.geometry import Horizontal, choose_seabed
 from cablefem.geometry.readers import is_number
@@ -44,6 +47,7 @@ from cablefem.model.scene import Contact, Environment, Friction, Scene, Solver
 from cablefem.io import validate as v
 from cablefem.io.axial_input import is_law, moordyn_law
 from cablefem.io.currents import MOORDYN_FILE, read_current_profile
+from cablefem.io.moordyn_waves import DT_WAVE, read_wave_kin
 from cablefem.io.moordyn_network import line_end, read_bodies, read_points
 from cablefem.io.moordyn_sections import (TABLE_COLUMNS, at as _at, parse_sections, refuse, split_sections,
     value as _value)
@@ -66,7 +70,7 @@ OPTION_CHECKS = {"wtrdpth": v.limited(v.positive, "length"),
                  "frictioncoefficient": v.limited(v.non_negative, "friction"),
                  "fricdamp": v.limited(v.positive, "friction_damping"),
                  "statdynfricscale": v.limited(v.positive, "friction"), "dtm": v.positive,
-                 "tmax": v.positive, "currents": v.number, "wavekin": v.number}
+                 "tmax": v.positive, "currents": v.number, "wavekin": v.number, "dtwave": v.positive}
 _WHOLE = re.compile(r"-?[0-9]+")  # ASCII digits only: str.isdigit() takes '\u00b2', which int() refuses
 V1_LINES_NOTE = ("LINES (line {row}): MoorDyn v1 columns (UnstrLen NumSegs NodeAnch NodeFair), read as the header "
                  "names them: AttachA = NodeAnch, AttachB = NodeFair (MoorDyn-C 2.x reads LINES by position as v2 "
@@ -173,8 +177,6 @@ def _options(rows, notes):
         notes.append(f"OPTIONS ignored by cablefem: {', '.join(ignored)}")
     if "dtm" in values:
         notes.append(f"dtM = {values['dtm']:g} s is MoorDyn's explicit step; the implicit solver keeps its own dt")
-    if values.get("wavekin", 0.0) != 0.0:
-        refuse("WaveKin", _at(numbers["wavekin"], "OPTIONS.WaveKin"), f"WaveKin {raw_option(raw, 'wavekin')}")
     return values, raw, seafloor, numbers
 
 
@@ -197,6 +199,31 @@ def _current_profile(path, options, numbers, notes):
     return profile
 
 
+def _waves(path, options, numbers, depth, gravity, read, notes):
+    """The Sea of ``WaveKin`` 2, 3 or 7 with its files beside the file (``io.moordyn_waves``), or None:
+    WaveKin 0, or ``read`` false (a TOML that wraps the file gives [waves] instead)."""
+    mode = options.get("wavekin", 0.0)
+    if mode == 0.0:
+        return None
+    key = _at(numbers["wavekin"], "OPTIONS.WaveKin")
+    if not read:
+        notes.append(f"WaveKin {mode:g} of {os.path.basename(path)} replaced by the TOML's [waves]")
+        return None
+    sea = read_wave_kin(mode, os.path.dirname(path), depth, gravity, options.get("dtwave", DT_WAVE), key)
+    notes.append(f"WaveKin {mode:g}: {sea.count} wave components from {sea.source}, summed at each point"
+                 + (" (MoorDyn-C interpolates them on water_grid.txt)" if mode != 7.0 else ""))
+    return sea
+
+
+def named_file(value, key, folder):
+    """The path of a data file a MoorDyn file names (``SeafloorFile``): where MoorDyn-C opens it, the
+    name as given, from the working directory; otherwise beside the file (``folder``)."""
+    here = os.path.abspath(os.path.expanduser(value))
+    if not os.path.isabs(value) and os.path.isfile(here):
+        return here
+    return v.existing_file(value, key, folder)
+
+
 def damping_time(ba, ea, mass, length, segments):
     """beta [s] in T = EA (e + beta de/dt) from MoorDyn's BA [N s] or -zeta (per-segment critical ratio)."""
     if ba >= 0:
@@ -204,10 +231,11 @@ def damping_time(ba, ea, mass, length, segments):
     return -ba * (length / segments) * math.sqrt(ea * mass) / ea
 
 
-def read_moordyn(path, simplify=True):
+def read_moordyn(path, simplify=True, waves=True):
     """The Scene of a MoorDyn v2 input file: lines anchor first, flat or gridded seabed, fixed fairleads.
 
-    ``simplify``: replace a planar SeafloorFile grid by its plane (``choose_seabed``).
+    ``simplify``: replace a planar SeafloorFile grid by its plane (``choose_seabed``); ``waves``: read
+    WaveKin and its files (False: a TOML that wraps the file gives its own [waves]).
     """
     path = os.path.abspath(path)
     try:
@@ -216,12 +244,12 @@ def read_moordyn(path, simplify=True):
     except UnicodeDecodeError:
         raise InputError("not a MoorDyn input file (not text)", file=path) from None
     try:
-        return _build(path, text, simplify)
+        return _build(path, text, simplify, waves)
     except InputError as error:
         raise error.within(file=path) from None
 
 
-def _build(path, text, simplify=True):
+def _build(path, text, simplify=True, waves=True):
     """The Scene of MoorDyn file text (errors without the file name; read_moordyn adds it)."""
     notes = []
     found = parse_sections(split_sections(text))
@@ -244,13 +272,16 @@ def _build(path, text, simplify=True):
                            syrope_rows)
     if seafloor is not None:
         keys["seabed"] = (path, _at(seafloor[1], "OPTIONS.SeafloorFile"))
-        file = v.existing_file(seafloor[0], keys["seabed"][1], os.path.dirname(path))
+        file = named_file(seafloor[0], keys["seabed"][1], os.path.dirname(path))
         seabed = v.read_seabed_file(file, "grid", keys["seabed"][1])
     elif "wtrdpth" in options:
         keys["seabed"] = (path, _at(options_rows["wtrdpth"], "OPTIONS.WtrDpth"))
         seabed = Horizontal(options["wtrdpth"])
     else:
         raise InputError("missing: needed for the seabed unless SeafloorFile is given", key="OPTIONS.WtrDpth")
+    # MoorDyn-C's waves see WtrDpth, or the seafloor grid's average depth
+    depth = -float(np.mean(seabed.z)) if seafloor is not None else options.get("wtrdpth", 0.0)
+    environment = replace(environment, waves=_waves(path, options, options_rows, depth, get("g"), waves, notes))
     contact = Contact(stiffness=get("kbot"), damping=get("cbot"), damping_when_opening=True)
     seabed, seabed_note = choose_seabed(seabed, lines, simplify)
     friction = _friction(get, lines[0], environment, notes)

@@ -46,9 +46,10 @@ REFUSED = {
     "ROD TYPES": ("ROD TYPES (properties of RODS)",
                   "model a rod as a short stiff line between two points, or fix its line ends to a body"),
     "FAILURE": ("FAILURE (line breakage during a run)", "run the intact and the broken system as two scenes"),
-    "WaveKin": ("wave kinematics (WaveKin other than 0)",
-                "set WaveKin 0 and prescribe the platform's motion ([motion], or a coupled body's motion in "
-                "a TOML that wraps the file); cablefem has no wave loads on lines"),
+    "WaveKin": ("wave kinematics other than WaveKin 0, 2, 3 and 7 (1: set through MoorDyn's API; 4 to 6: not "
+                "implemented in MoorDyn-C either)",
+                "give the waves as [waves] in a TOML that wraps the file, or write them as wave_frequencies.txt "
+                "with WaveKin 7"),
     "Currents": ("a time-varying or gridded current (Currents 2 to 5)",
                  "give a steady profile: Currents 1 with current_profile.txt, or [environment] current_profile "
                  "in a TOML that wraps the file"),
