@@ -45,9 +45,10 @@ def test_error_window_ignores_what_comes_before_it():
     assert error(t, run, t, sine(t)[:, None], 80.0) == 0.0
 
 
-def test_best_scene_changes_only_order_elements_step_and_tolerance():
-    best = SYSTEMS["oc4-semi"]["best"]
-    default, tuned = scene_of("oc4-semi"), scene_of("oc4-semi", **best)
+@pytest.mark.parametrize("system", list(SYSTEMS))
+def test_best_scene_changes_only_order_elements_step_and_tolerance(system):
+    best = SYSTEMS[system]["best"]
+    default, tuned = scene_of(system), scene_of(system, **best)
     assert [line.order for line in tuned.lines] == [best["order"]] * len(default.lines)
     assert [s.elements for line in tuned.lines for s in line.segments] == [best["elements"]] * len(default.lines)
     assert (tuned.solver.dt, tuned.solver.tolerance) == (best["dt"], best["tolerance"])
