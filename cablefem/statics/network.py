@@ -78,6 +78,12 @@ class NetworkStatics:
     residual: float
     history: list = field(default_factory=list)
     wall_time_s: float = 0.0
+    solves: list = field(default_factory=list)  # per string: {how its solves converged: how many}
+    string_iterations: list = field(default_factory=list)  # per string: its Newton iterations, summed
+
+    def strategy(self, k):
+        """How string k was solved, e.g. 'network (predicted x11, axial continuation x1)'."""
+        return "network (" + ", ".join(f"{name} x{n}" for name, n in self.solves[k].items()) + ")"
 
 
 class Network:
@@ -109,6 +115,8 @@ class Network:
                 given or any(kk == k and ee == e for kk, ee, _ in self.ends) for e, given in enumerate(lines[k].prescribed)))
         self.lines = lines
         self.systems = [build(line) for line in lines]
+        self.solves = [{} for _ in lines]  # per string: {how a solve converged: how many}
+        self.string_iterations = [0] * len(lines)
 
     def _node(self, name):
         """The coupling node at point ``name`` (made on first use), or None (not a coupling node)."""
@@ -163,7 +171,7 @@ class Network:
         for k in self.coupled:
             system = self.systems[k]
             targets = {e: places[name][0] for kk, e, name in self.ends if kk == k}
-            X1, its, ok = None, 0, False
+            X1, its, ok, how = None, 0, False, "predicted"
             if states[k] is not None:
                 # from its last equilibrium, moved with its ends, a string converges, if slowly: one far
                 # stiffer than its loads, an element taut by micrometres (tripod.txt's float), by a
@@ -173,15 +181,17 @@ class Network:
             if not ok:  # from its start shape
                 X = _start(system, targets)
                 X1, more, _, _, ok = newton(system, X, tolerance, max_iterations)
-                its += more
+                its, how = its + more, "newton"
             if not ok:  # a string far stiffer than its loads (tripod.txt's float)
                 X1, more, _, _, ok = axial_continuation(system, X, tolerance, max_iterations)
-                its += more
+                its, how = its + more, "axial continuation"
             if not ok:
                 result = solve_static(system, X, tolerance, max_iterations)
-                X1, its = result.X, its + result.iterations
+                X1, its, how = result.X, its + result.iterations, result.strategy
             system.commit_history()
             states[k], iterations = X1, iterations + its
+            self.solves[k][how] = self.solves[k].get(how, 0) + 1
+            self.string_iterations[k] += its
         return iterations
 
     def predict(self, k, X, targets):
@@ -324,7 +334,7 @@ def solve_network(scene, build, tolerance=1e-8, max_iterations=50):
     points = {name: places[name][0] for name in net.junctions}
     poses = {name: q[net.offsets[name]:net.offsets[name] + 6].copy() for name in net.bodies}
     return NetworkStatics(net.systems, states, points, poses, iterations, norm, history,
-                          time.perf_counter() - start)
+                          time.perf_counter() - start, net.solves, net.string_iterations)
 
 
 class _Balance:

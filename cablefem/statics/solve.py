@@ -33,7 +33,9 @@ def solve_static(system, X0=None, tolerance=1e-8, max_iterations=50):
     continuation on the axial stiffness (a line far stiffer than its loads), then the line let go
     in water until it settles (``settle``: a buoyant section rising off the seabed into its arch,
     which Newton cannot reach from a start with the section lying slack), then continuation on
-    the seabed stiffness (``cablefem.statics.continuation``), each from the start."""
+    the seabed stiffness (``cablefem.statics.continuation``), each from the start. From the hang of a
+    line with one free end (``cablefem.statics.hang``) the points' loads are there from the first
+    Newton and axial continuation comes before pseudo-transient."""
     start = time.perf_counter()
     X, slack = initial_shape(system) if X0 is None else (X0, False)
     system.reset_history(X)  # a load's history starts at the start shape (``initial_history``)
