@@ -54,8 +54,8 @@ def cmd_static(args):
               + " ".join(f"{x:.6e}" for x in body["force"]) + " [N]; moment "
               + " ".join(f"{x:.6e}" for x in body["moment"]) + " [N m]")
     if network is not None:
-        print(f"network: {len(network.history) - 1} outer Newton iterations (halving) on its junctions and free "
-              f"bodies, balance residual {network.residual:.2e} (its strings' iterations are in their rows)")
+        print(f"network: {len(network.history) - 1} outer Newton iterations ({network.outer}) on its junctions and "
+              f"free bodies, balance residual {network.residual:.2e} (its strings' iterations are in their rows)")
     for rep, res in zip(reports, results):
         if rep.soil is not None:
             mudline = rep.soil["mudline_tension"]
@@ -124,7 +124,7 @@ def cmd_sweep(args):
 
 
 def cmd_plot(args):
-    """``cablefem plot OUT [--png FILE] [--y STAT --x KEY --by KEY]``: a run, or a sweep's table."""
+    """``cablefem plot OUT [--png FILE] [--elevation] [--y STAT --x KEY --by KEY]``: a run, or a sweep's table."""
     from cablefem.io.output import prepare_file
 
     if args.png:
@@ -136,7 +136,7 @@ def cmd_plot(args):
     else:
         from cablefem.post import plot_tensions
 
-        path = plot_tensions(args.out, args.png)
+        path = plot_tensions(args.out, args.png, elevation=args.elevation)
     print(f"wrote {path}")
 
 
@@ -179,6 +179,8 @@ def build_parser():
     plot = commands.add_parser("plot", help="tension against time of a run, or a statistic of a sweep")
     plot.add_argument("out", metavar="OUT", help="output folder of a run or of a sweep (or a sweep's table)")
     plot.add_argument("--png", metavar="FILE", help="image to write (default: OUT/tensions.png, OUT/sweep.png)")
+    plot.add_argument("--elevation", action="store_true", help="a run in waves: the elevation at the origin "
+                      "above the tensions")
     plot.add_argument("--y", metavar="STAT", help="sweep: the column to draw (default: the first line's "
                       "fairlead_tension_max, or fairlead_tension for static cases)")
     plot.add_argument("--x", metavar="KEY", help="sweep: the parameter along x (default: the first varied one)")

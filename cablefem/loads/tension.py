@@ -165,9 +165,10 @@ def tension_hold(base, state, hold, p, again):
 
 
 def build(setting):
-    """Every line carries its tension, with each line type's damping law."""
+    """Every line carries its tension, with each line type's damping law (EA = 0 on the elements of
+    a line type with an axial law of its own: ``cablefem.loads.rope`` carries them)."""
     props = setting.props
-    return Tension(props["EA"], props["damping"], slack_damping=props["damping_when_slack"])
+    return Tension(props["EA"] * ~props["rope"], props["damping"], slack_damping=props["damping_when_slack"])
 
 
 SPEC = LoadSpec("tension", "reduced", (("EA", "f8"), ("beta", "f8"), ("pushes", "?"), ("slack_damping", "?")),

@@ -9,6 +9,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from cablefem.loads import State
+from cablefem.loads.rope import Rope
+
 
 @dataclass
 class LineReport:
@@ -213,7 +216,9 @@ class LineSampler:
         # r' of every point in one product: the points, then the vertices from the left, from the right
         self.stacked = (np.concatenate([self.gradients, left[1], right[1]]),
                         np.concatenate([self.dofs, left[3], right[3]]))
-        self.law = tension_law(system, np.concatenate([self.element, left[2], right[2]]))
+        elements = np.concatenate([self.element, left[2], right[2]])
+        self.law = tension_law(system, elements)
+        self.rope = RopeSampler(system, elements, np.concatenate([self.s, at - inset, at + inset]))
 
     def evaluate(self, X):
         """X (N, 3) at the sample points, (n, 3)."""
@@ -229,8 +234,9 @@ class LineSampler:
         the two elements', and at the ends the line's tension there, ``ends`` = (fairlead, anchor):
         forces (3,) or their magnitudes (without, the law's there)."""
         dr = self._sides(X)
+        dv = None if V is None else self._sides(V)
         strain = self._points(np.linalg.norm(dr, axis=1) - 1.0)
-        tension = self._points(point_tension(self.law, dr, None if V is None else self._sides(V)))
+        tension = self._points(point_tension(self.law, dr, dv) + self.rope.tension(dr, dv))
         if ends is not None:
             tension[self.fairlead], tension[self.anchor] = (float(np.linalg.norm(end)) for end in ends)
         return strain, tension
@@ -250,6 +256,39 @@ class LineSampler:
         out = values[:n].copy()
         if m:
             out[self.vertices] = 0.5 * (values[n:n + m] + values[n + m:])
+        return out
+
+
+class RopeSampler:
+    """The tension [N] of a line's rope elements (``cablefem.loads.rope``) at sample points: a table's
+    law at the points' r' and v' (``Rope.tension``), a law with history the tension its nearest
+    reduced point committed (the history's ``tension``: a frame or the static JSON comes after a
+    commit); zero on the tension load's elements (and on a line without a rope)."""
+
+    def __init__(self, system, elements, s):
+        self.system = system
+        self.rope = system.load("rope") if system.has("rope") else None
+        if self.rope is None:
+            return
+        kind = self.rope.kind[elements]
+        self.table = np.flatnonzero(kind == 1)
+        self.history = np.flatnonzero(kind > 1)
+        rule = system.fem.reduced.s[elements[self.history]]  # (m, nr) arc lengths of their reduced points
+        self.at = (elements[self.history], np.argmin(np.abs(rule - s[self.history, None]), axis=1))
+        self.law = Rope([self.rope.laws[e] for e in elements[self.table]], self.rope.EA[elements[self.table], 0],
+                        self.rope.slack_damping[elements[self.table], 0]) if self.table.size else None
+
+    def tension(self, dr, dv=None):
+        """Tension [N] (n,) of the rope at points with dr/ds and dv/ds (n, 3)."""
+        out = np.zeros(len(dr))
+        if self.rope is None:
+            return out
+        if self.law is not None:
+            rows = self.table
+            state = State(None, dr[rows].T[:, :, None], dv=None if dv is None else dv[rows].T[:, :, None])
+            out[rows] = self.law.tension(state)[0][:, 0]
+        if self.history.size:
+            out[self.history] = self.system.history["reduced"][0]["rope"]["tension"][self.at]
         return out
 
 

@@ -33,6 +33,7 @@ from cablefem.loads.points import PointLoads
 from cablefem.model.network import coupling, rotation, rotation_rates
 from cablefem.statics.continuation import axial_continuation
 from cablefem.statics.hang import free_end
+from cablefem.statics.network_relax import NetworkPseudoTransient
 from cablefem.statics.newton import Halving, iterate, newton
 from cablefem.statics.solve import solve_static
 
@@ -80,6 +81,7 @@ class NetworkStatics:
     wall_time_s: float = 0.0
     solves: list = field(default_factory=list)  # per string: {how its solves converged: how many}
     string_iterations: list = field(default_factory=list)  # per string: its Newton iterations, summed
+    outer: str = "halving"  # how the coupling unknowns' Newton converged
 
     def strategy(self, k):
         """How string k was solved, e.g. 'network (predicted x11, axial continuation x1)'."""
@@ -130,7 +132,7 @@ class Network:
             return None
         env = self.scene.environment
         loads = None
-        if point.mass > 0.0 or point.volume > 0.0:
+        if point.mass > 0.0 or point.volume > 0.0 or np.any(point.force):
             loads = PointLoads([0], [point.joint], env.water_density, env.gravity)
         node = _Node(name, self.offsets[owner], None if point.body is None else point.position, loads)
         self.nodes[name] = node
@@ -323,6 +325,18 @@ def solve_network(scene, build, tolerance=1e-8, max_iterations=50):
     balance = _Balance(net, tolerance, max_iterations)
     (q, states, places), _, norm, history, converged = iterate(balance, (q, states, places), tolerance,
                                                                max_iterations, Halving())
+    outer = "halving"
+    if not converged:  # no equilibrium within Newton's reach: follow a damped pseudo-motion to one
+        q0, states0 = net.start(), [None] * len(scene.lines)
+        places0 = net.place(q0)
+        iterations += net.solve_strings(places0, states0, tolerance, max_iterations)
+        relaxed = iterate(balance, (q0, states0, places0), tolerance, 10 * max_iterations,
+                          NetworkPseudoTransient(net))
+        if relaxed[4]:
+            (q, states, places), _, norm, more, converged = relaxed
+            history, outer = history + more, "halving, then pseudo-transient"
+        else:
+            norm = min(norm, relaxed[2])
     iterations += balance.iterations
     if not converged:
         raise ConvergenceError(
@@ -334,7 +348,7 @@ def solve_network(scene, build, tolerance=1e-8, max_iterations=50):
     points = {name: places[name][0] for name in net.junctions}
     poses = {name: q[net.offsets[name]:net.offsets[name] + 6].copy() for name in net.bodies}
     return NetworkStatics(net.systems, states, points, poses, iterations, norm, history,
-                          time.perf_counter() - start, net.solves, net.string_iterations)
+                          time.perf_counter() - start, net.solves, net.string_iterations, outer)
 
 
 class _Balance:

@@ -138,7 +138,8 @@ class PseudoTransient:
         fem = system.fem
         self.system = system
         self.mass = fem.vector_mass(system.props["mass"])
-        self.tau = 0.1 * float(np.min(np.diff(fem.mesh.p[0]))) / system.environment.gravity
+        # a scene without gravity (g = 0) takes the free fall of the standard g
+        self.tau = 0.1 * float(np.min(np.diff(fem.mesh.p[0]))) / (system.environment.gravity or 9.80665)
 
     def direction(self, problem, tangent, residual):
         blocks, _ = tangent
@@ -300,17 +301,25 @@ def tension_only(system, X, tolerance, max_iterations, push=True):
     """
     if not push:
         return newton(system, X, tolerance, max_iterations)
-    tension = system.tension
-    tension.compression = True
+    axial = axial_loads(system)
+    for load in axial:
+        load.compression = True
     try:
         X1, its, norm, history, ok = newton(system, X, tolerance, max_iterations)
     finally:
-        tension.compression = False
+        for load in axial:
+            load.compression = False
     if ok and np.all(system.tension_strain(X1) > 0.0):
         return X1, its, norm, history, ok
     start = X1 if ok else X
     X2, its2, norm2, history2, ok2 = newton(system, start, tolerance, max_iterations)
     return X2, its + its2, norm2, history + history2, ok2
+
+
+def axial_loads(system):
+    """The line's axial loads: its tension and, where a line type has a law of its own, its rope
+    (``cablefem.loads.rope``)."""
+    return [system.tension] + ([system.load("rope")] if system.has("rope") else [])
 
 
 def point_loads(system):

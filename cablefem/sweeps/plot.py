@@ -31,6 +31,9 @@ KEY_UNITS = {
     ("motion", "ramp"): "s",
     ("solver", "dt"): "s", ("solver", "duration"): "s",
     ("output", "every"): "s",
+    ("waves", "amplitude"): "m", ("waves", "period"): "s", ("waves", "direction"): "deg", ("waves", "phase"): "deg",
+    ("waves", "Hs"): "m", ("waves", "Tp"): "s", ("waves", "frequency_band"): "rad/s", ("waves", "time_step"): "s",
+    ("waves", "ramp"): "s", ("waves", "depth"): "m",
 }
 
 #: the sections whose tables are named (``[line_types.NAME]``, ...): a key path's second part is the name
