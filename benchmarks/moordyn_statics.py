@@ -12,28 +12,36 @@ in; cablefem reads a path from the input file's folder, so give FOLDER a link ``
 (tests/data/moordyn holds the profile at that path).
 
 Target (issue 33): lifting.txt <= 5 s, no input over 2 s unless it says why. Measured on MoorDyn
-v2.7.1's tests/Mooring (2 shared cores, --repeats 3), the files cablefem reads:
+v2.7.1's tests/Mooring (links ``Mooring -> .`` in it and in 3D_seafloor/; 2 shared cores,
+--repeats 3), the 23 files cablefem reads, all converged:
 
 | file | iters | time [s] | strategy |
 |---|---|---|---|
-| WD0050_Chain.txt | 4 | 0.018 | newton |
-| WD0200_Chain.txt | 3 | 0.020 | newton |
+| 3D_seafloor/hanging_lines.txt | 0 | 0.076 | newton x10 (ten chains on free ends: their hangs are the equilibrium) |
+| BeamSimplySupported.txt | 6 | 0.021 | newton |
+| WD0050_Chain.txt | 4 | 0.016 | newton |
+| WD0200_Chain.txt | 3 | 0.018 | newton |
 | WD0600_Chain.txt | 4 | 0.030 | newton |
-| lifting.txt | 0 | 0.028 | newton (the start, where the mass hangs, is the equilibrium) |
-| lines.txt | 9 | 0.030 | newton x3 |
-| local_euler/duplicated.txt | 8 | 0.027 | newton x2 |
+| body_tests/bodyDrag.txt | 0 | 0.421 | network, 32 outer iterations (halving, then pseudo-transient): newton x2, predicted x43 (a one-element line: no unknowns of its own) |
+| body_tests/rotatingBody.txt | 0 | 0.064 | network, 0 outer: newton x7 |
+| lifting.txt | 0 | 0.017 | newton (its hang is the equilibrium) |
+| lines.txt | 9 | 0.034 | newton x3 |
+| local_euler/duplicated.txt | 8 | 0.022 | newton x2 |
 | local_euler/hanging.txt | 2 | 0.014 | newton |
-| pendulum.txt | 0 | 0.016 | newton |
-| polyester/simple.txt | 1 | 0.010 | newton |
-| seafloor.txt | 105 | 0.811 | axial continuation |
-| tripod.txt | 1684 | 1.238 | network, 12 outer iterations: axial continuation x4, predicted x48 |
+| pendulum.txt | 0 | 0.021 | newton |
+| polyester/simple.txt | 1 | 0.014 | newton |
+| seafloor.txt | 105 | 0.793 | axial continuation (Newton from the taut start first) |
+| syrope/{exp,linear,quadratic}_wc/line.txt | 0 | 0.003-0.008 | newton |
+| tripod.txt | 1684 | 1.243 | network, 12 outer: axial continuation x4, predicted x48 |
 | viv/viv.txt | 5 | 0.025 | newton |
-| body_tests/bodyDrag.txt | - | 0.139 | not converged: its free body (10 kg, no volume) hangs below the fixed point its spring is tied to, and is given above it; every load acts at its reference point, so its rotations are free |
+| wave_surface/wave_surface.txt | 94 | 0.133 | newton x5 |
+| wavekin_2/wavekin_2.txt, wavekin_3.txt | 5 | 0.025 | newton |
+| wavekin_7/wavekin_7.txt | 3 | 0.015 | newton |
 
-The other 29 are refused while read, each with its reason: RODS (8), wave kinematics or
-time-varying currents (14), SYROPE (3), a nonlinear or viscoelastic EA (1), a zero g (1), a point
-above the surface (1), an unexpanded template (time_schemes.txt's ``@DT@``).
-""""""
+The other 19 are refused while read, each with its reason: RODS (8), a time-varying or gridded
+current (6), WaveKin 1 (3), polyester/visco.txt's line, 1 m between points 2 m apart (1), and
+time_schemes.txt's unexpanded template ``@DT@`` (1).
+"""
 
 import argparse
 import sys
