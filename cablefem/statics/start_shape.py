@@ -56,13 +56,14 @@ def mean_weight(line, environment):
 
 def initial_shape(system):
     """Starting state X (N, 3) of a static solve of ``system`` and whether it lays slack line."""
-    line, seabed, fem = system.line, system.seabed, system.fem
+    line, fem = system.line, system.fem
     weight, EA = mean_weight(line, system.environment)
-    positions, slack = _shape(system, weight, EA)
+    hang = _hang(system)
+    positions, slack = (hang, False) if hang is not None else _shape(system, weight, EA)
     X = fem.interpolate(positions)
     _rest_on_seabed(system, X, max(weight, 0.0))
     for dof, end, held in zip(fem.end_dofs, (line.anchor, line.fairlead), line.prescribed):
-        if held or not hangs(system):  # a free end that hangs stays where the hang puts it
+        if held or hang is None:  # a free end that hangs stays where the hang puts it
             X[dof] = end
     return X, slack
 
@@ -78,11 +79,9 @@ def _hang(system):
 
 
 def _shape(system, weight, EA):
-    """The start's positions (a function of arc length) and whether they lay slack line."""
+    """The start's positions (a function of arc length) and whether they lay slack line, for a line
+    that does not hang from one end."""
     line, seabed = system.line, system.seabed
-    hang = _hang(system)
-    if hang is not None:
-        return hang, False
     dry = float(np.max(system.weight.dry))
     if weight > NEUTRAL * dry:
         positions = slack_layout(line, seabed, weight, EA, resting_sink(system, weight))
