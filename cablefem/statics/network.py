@@ -203,7 +203,7 @@ class Network:
         continuation in the ends' positions: a taut leg turns about its anchor). A string with a free
         end hangs from its coupling end and moves with it (its turn about the vertical through that
         end is free, without current: a null direction of K_II, along which the tangent's response
-        is round-off amplified: tripod.txt's float string takes fewer iterations so than with the
+        is round-off amplified; on tripod.txt's float string this takes fewer iterations than the
         tangent's response or a shift falling from the end's move to none at the free end)."""
         if free_end(self.lines[k]) is not None:
             (e, target), = targets.items()
