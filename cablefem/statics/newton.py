@@ -19,7 +19,7 @@ scene's) and the order a solve tries them in (``cablefem.statics.solve``) are bu
 Newton starts from a shape close to the answer (``cablefem.statics.start_shape``: the elastic
 catenary that touches the seabed, never the straight chord, which converges to the inverse catenary
 of Fig. 5; the slack layout of a line longer than it needs; the inverted catenary of a buoyant
-line). It stops when the residual relative to the line's weight falls below the tolerance, or when
+line; the hang of a line with one free end). It stops when the residual relative to the line's weight falls below the tolerance, or when
 a full Newton step no longer reduces it and the step itself, the scale-free residual K^-1 G
 relative to the line's length, is below the tolerance (round-off: a position known to eps |X|
 leaves forces of eps |X| EA / h, which at large EA or seabed stiffness are far above any force
@@ -188,15 +188,15 @@ class Halving:
 
 class LineProblem:
     """One line's static residual on its free rows, as ``iterate`` solves it: positions X (N, 3), the
-    residual relative to ``scale`` (default the weight of the line's free rows), steps small below
-    ``tolerance`` of the line's length; evaluated by the system's evaluator (``_Linearisation``), or
-    by the loads' numpy faces (``numpy``)."""
+    residual relative to ``scale`` (default ``force_scale``), steps small below ``tolerance`` of the
+    line's length; evaluated by the system's evaluator (``_Linearisation``), or by the loads' numpy
+    faces (``numpy``)."""
 
     def __init__(self, system, tolerance, scale=None, numpy=False):
         fem = system.fem
         self.system, self.free, self.tolerance = system, fem.free_dofs, tolerance
         self.length = system.line.unstretched_length
-        self.scale = scale or float(np.linalg.norm(system.weight_vector()[self.free])) or 1.0
+        self.scale = scale or force_scale(system)
         self.linear = _Linearisation(system, numpy)
 
     def evaluate(self, X):
@@ -219,6 +219,19 @@ class LineProblem:
 
     def energy(self, X):
         return self.system.energy(X)
+
+
+def force_scale(system):
+    """The force [N] a line's static residual is relative to: the weight of its free rows, or its
+    points' weight less their buoyancy on its free rows where that is larger (a line as dense as the
+    water weighs nothing: the mass on its free end is what it carries)."""
+    free = system.fem.free_dofs
+    scale = float(np.linalg.norm(system.weight_vector()[free]))
+    points = point_loads(system)
+    if points is not None:
+        held = np.isin(points.vertices, free)
+        scale = max(scale, float(np.linalg.norm((points.dry - points.buoyancy)[held])))
+    return scale or 1.0
 
 
 def newton(system, X, tolerance=1e-8, max_iterations=50, scale=None):
