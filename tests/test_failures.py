@@ -346,3 +346,79 @@ def test_what_cablefem_cannot_honour_in_a_moordyn_failure_is_one_line(row, reaso
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1, err
     assert str(path) in err and "FAILURE.1" in err and reason in err, err
+
+
+#: a small crowfoot: two legs from anchors and an upper line to a coupled buoy meet at a clump (a junction)
+CROWFOOT = HANG.split("[[lines]]")[0].format(damping=0.05, cd=2.0, cd_t=0.5, ca=1.0).replace('"hang"', '"crow"') + """\
+[bodies.buoy]
+kind = "coupled"
+position = [0.0, 0.0, 0.0]
+[bodies.buoy.motion]
+kind = "harmonic"
+amplitude = [1.0, 0.0, 0.3, 0.0, 0.0, 0.0]
+period = 4.0
+[points.f]
+body = "buoy"
+position = [-1.0, 0.0, -1.0]
+[points.j]
+kind = "free"
+position = [-16.0, 0.0, -8.0]
+mass = 200.0
+volume = 0.02
+[points.a1]
+kind = "fixed"
+position = [-40.0, 15.0, -20.0]
+[points.a2]
+kind = "fixed"
+position = [-40.0, -15.0, -20.0]
+[[lines]]
+name = "upper"
+anchor = "j"
+fairlead = "f"
+segments = [{ type = "chain", length = 18.5, elements = 8 }]
+[[lines]]
+name = "leg1"
+anchor = "a1"
+fairlead = "j"
+segments = [{ type = "chain", length = 33.0, elements = 8 }]
+[[lines]]
+name = "leg2"
+anchor = "a2"
+fairlead = "j"
+segments = [{ type = "chain", length = 33.0, elements = 8 }]
+[seabed]
+kind = "horizontal"
+depth = 60.0
+[solver]
+dt = 0.05
+duration = 2.0
+[output]
+every = 0.5
+"""
+
+
+def test_a_leg_of_a_junction_lets_go_of_its_anchor_and_the_junction_steps_on(tmp_path):
+    """A leg of a crowfoot lets go of its anchor at 0.5 s: the junction's group is made again with the
+    leg's new integrator, the other strings' accelerations kept. The rows up to the release are the
+    intact run's exactly; after it the leg's anchor tension is 0 and the group steps on to 2 s, the
+    released anchor end falling more than 0.5 m from where it was held."""
+    intact_path, failing_path = tmp_path / "intact.toml", tmp_path / "failing.toml"
+    intact_path.write_text(CROWFOOT)
+    failing_path.write_text(CROWFOOT + '[[failures]]\nline = "leg1"\nend = "anchor"\ntime = 0.5\n')
+    run_scene(load_scene(str(intact_path)), str(tmp_path / "intact"), progress=False)
+    scene = load_scene(str(failing_path))
+    summary = run_scene(scene, str(tmp_path / "failing"), progress=False)
+    assert summary["completed"] and summary["failures"][0]["released_at"] == pytest.approx(0.5, abs=1e-12)
+    before, after = rows(tmp_path / "intact"), rows(tmp_path / "failing")
+    k = int(np.flatnonzero(np.isclose(after["t"], 0.5))[0])
+    for column in before:
+        np.testing.assert_array_equal(after[column][:k + 1], before[column][:k + 1])
+    assert np.all(after["leg1:anchor_tension"][k + 1:] == 0.0)
+    assert np.max(np.abs(after["leg2:anchor_tension"][k + 1:] - before["leg2:anchor_tension"][k + 1:])) > 1.0
+    import meshio
+
+    last = sorted(f for f in os.listdir(tmp_path / "failing") if f.startswith("crow_") and f.endswith(".vtu"))[-1]
+    nodes = meshio.read(str(tmp_path / "failing" / last)).points
+    names = [line.name for line in scene.lines]
+    start = 9 * names.index("leg1")  # each string's 9 nodes in scene order, its anchor first
+    assert np.linalg.norm(nodes[start] - np.array([-40.0, 15.0, -20.0])) > 0.5
