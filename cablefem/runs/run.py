@@ -224,11 +224,7 @@ def _advance(scene, integrators, groups, outputs, tracker, duration, dt, failure
             # fixed steps to the next output time, or adaptive ones (``policy.advance``): each group in one call
             times = np.array([stop]) if solver.adaptive else step_times(t, stop, dt)
             if failures.watching_tension and not solver.adaptive:
-                rows = []
-                for tk in times:  # one step at a time: an end lets go after the first step over its threshold
-                    rows += _march(integrators, groups, [tk], write)
-                    if failures.due(rows[-1]):
-                        break
+                rows = _march_to_tension(integrators, groups, times, write, failures)
             else:
                 rows = _march(integrators, groups, times, write)
             rows = failures.zero(rows)
@@ -237,6 +233,33 @@ def _advance(scene, integrators, groups, outputs, tracker, duration, dt, failure
             t = record(rows)
             if scene.failures:
                 release(rows[-1])
+
+
+def _march_to_tension(integrators, groups, times, write, failures):
+    """``_march`` to ``times``, stopping after the first step at whose end a failure's tension is
+    exceeded: the steps are marched in one call; where a row before the last is over a threshold, the
+    groups go back to where they were (``Group.restore``) and march again one step at a time to that
+    row, so that an end lets go after the first step over its threshold (the steps taken twice are
+    counted twice). A march that fails is taken again step by step too: an end may let go before."""
+    saved = [group.snapshot() for group in groups]
+    try:
+        rows = _march(integrators, groups, times, lambda rows: None)
+        k = failures.first_due(rows)
+        if k is None or k == len(rows) - 1:
+            return rows
+    except ConvergenceError:  # the intact line failed where it might have let go before: step by step
+        k = len(times) - 1
+    for group, snapshot in zip(groups, saved):
+        group.restore(snapshot)
+        group.marched = None
+        for member in group.members:
+            member.contraction = -1.0  # the kept factors are of a later state
+    rows = []
+    for tk in times[:k + 1]:
+        rows += _march(integrators, groups, [tk], write)
+        if failures.due(rows[-1]):
+            break
+    return rows
 
 
 def _regroup(groups, old, new):
