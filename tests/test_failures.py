@@ -169,8 +169,9 @@ def _heaving(tmp_path, failures="", solver="", name="heave.toml", duration=4.0):
 def test_a_tension_threshold_lets_go_at_the_first_step_over_it(tmp_path):
     """The threshold halfway between the intact run's smallest and largest anchor tension after t = 0:
     the run with the failure lets go at the first row (step) of the intact run above it, with that
-    row's tension; its rows up to there are the intact run's (1e-9: the steps after a failure to watch
-    are marched one at a time), and its anchor tension is 0 after."""
+    row's tension (the interval holding it, 20 steps, marched again one step at a time from its start);
+    its rows up to there are the intact run's (1e-9: the steps taken one by one against in one call),
+    and its anchor tension is 0 after."""
     intact = tmp_path / "intact"
     run_scene(_heaving(tmp_path), str(intact), progress=False)
     before = rows(intact)

@@ -2,7 +2,8 @@
 
 A scene's ``failures`` (``cablefem.model.failure``) are watched at the end of each accepted step of the
 run (each row of tensions.csv): a time threshold is a time the steps land on (``next_time``, as the
-output times are), a tension threshold is compared with the tension at that end after each step. At
+output times are), a tension threshold is compared with the tension at that end after each step
+(``cablefem.runs.run``: the steps stop after the first one over it). At
 the first row where a failure's condition holds the end lets go (``release``): the line is built again
 with that end free (an unknown like any free end: ``Line.prescribed``), its integrator made again from
 the same positions, velocities, scheme memory, clock and counters, with the acceleration its new free

@@ -179,8 +179,8 @@ def _advance(scene, integrators, groups, outputs, tracker, duration, dt, failure
     output interval) and a VTK frame every ``output.every`` [s]. Ctrl-C and SIGTERM take effect
     between output intervals (``deferred_signals``; a compiled march does not see them sooner
     anyway), so that the rows and frames always hold every step taken. The steps land on the
-    failures' times; with a failure's tension to watch, fixed steps are marched one at a time;
-    where a failure is due a line end lets go (``cablefem.runs.failures``)."""
+    failures' times; with a failure's tension to watch, fixed steps stop after the first step over
+    it (``_march_to_tension``); where a failure is due a line end lets go (``cablefem.runs.failures``)."""
     solver, frames, table, bar = scene.solver, outputs["frames"], outputs["table"], outputs["bar"]
     surface = outputs.get("surface")
     samplers = [LineSampler(integ.system) for integ in integrators]  # the frames' points, once
