@@ -423,3 +423,19 @@ def test_a_leg_of_a_junction_lets_go_of_its_anchor_and_the_junction_steps_on(tmp
     names = [line.name for line in scene.lines]
     start = 9 * names.index("leg1")  # each string's 9 nodes in scene order, its anchor first
     assert np.linalg.norm(nodes[start] - np.array([-40.0, 15.0, -20.0])) > 0.5
+
+
+def test_a_failure_names_a_line_end_as_the_scene_wrote_it(tmp_path):
+    """A line written from the buoy's point to its anchor is turned round in its string (its most
+    fixed end first): its 'anchor' as written is the string's fairlead end, and its 'fairlead' the
+    string's anchor end; a line of a scene without a network keeps its ends."""
+    turned = NETWORK.replace('anchor = "a1"\nfairlead = "p1"', 'anchor = "p1"\nfairlead = "a1"')
+    for end, expected in (("anchor", 1), ("fairlead", 0)):
+        path = tmp_path / f"turned_{end}.toml"
+        path.write_text(turned + f'[[failures]]\nline = "west"\nend = "{end}"\ntime = 1.0\n')
+        scene = load_scene(str(path))
+        (failure,) = scene.failures
+        assert scene.lines[failure.string].name == "west" and failure.string_end == expected
+        assert scene.lines[failure.string].ends[failure.string_end] == ("p1" if end == "anchor" else "a1")
+    (failure,) = hang_scene(tmp_path, '[[failures]]\nline = "line1"\nend = "fairlead"\ntime = 1.0\n').failures
+    assert (failure.string, failure.string_end) == (0, 1)

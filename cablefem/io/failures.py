@@ -9,6 +9,8 @@ holds it and whichever way round; in a TOML that wraps a MoorDyn file, a line as
 not held in place (a free end, a junction, a free point between two lines) cannot let go.
 """
 
+import numpy as np
+
 from cablefem.errors import InputError
 from cablefem.io import validate as v
 from cablefem.model.failure import ENDS, Failure, releasable
@@ -17,14 +19,14 @@ FAILURE_KEYS = {"line": v.text, "end": v.choice(ENDS), "time": v.non_negative,
                 "tension": v.limited(v.positive, "force")}
 
 
-def _string_of(strings, name, point, key, prefix=""):
-    """(index, end) of the string end at ``point`` among the strings holding line ``name`` (a string
-    named ``prefix`` + the names of its lines joined by '+'); an InputError if the line's end there is
-    inside a string (a free point joining two lines)."""
+def _string_of(strings, name, point, position, key, prefix=""):
+    """(index, end) of the end of a string holding line ``name`` (a string named ``prefix`` + the names
+    of its lines joined by '+') at point ``point`` (None: the line's own end, found by its ``position``
+    (3,) [m]); an InputError if the line's end is inside its string (a free point joining two lines)."""
     for k, string in enumerate(strings):
         if name in string.name[len(prefix):].split("+"):
-            for end, at in enumerate(string.ends):
-                if at == point:
+            for end, (at, where) in enumerate(zip(string.ends, (string.anchor, string.fairlead))):
+                if at == point and (point is not None or np.array_equal(where, position)):
                     return k, end
             raise InputError(f"line '{name}' ends at free point '{point}', which joins it to the next line of "
                              f"'{string.name}': that end is not held and cannot let go", key=key)
@@ -48,10 +50,11 @@ def read_toml_failures(raw, strings, lines=None):
             raise InputError(f"no line '{name}'{v.suggest(name, names)} in the scene; its lines: "
                              f"{', '.join(names)}", key=f"{prefix}.line")
         line = named[names.index(name)]
-        if lines is None or line.ends[end] is None:
-            k, string_end = (names.index(name), end) if lines is None else _string_of(strings, name, None, prefix)
+        if lines is None:
+            k, string_end = names.index(name), end
         else:
-            k, string_end = _string_of(strings, name, line.ends[end], f"{prefix}.end")
+            k, string_end = _string_of(strings, name, line.ends[end], (line.anchor, line.fairlead)[end],
+                                       f"{prefix}.end")
         releasable(strings[k], string_end, name, f"{prefix}.end")
         failures.append(Failure(name, values["end"], values.get("time"), values.get("tension"), k, string_end,
                                 prefix))
@@ -107,7 +110,7 @@ def read_moordyn_failures(rows, raw_lines, points, strings, at):
         ends = [e for e, end in enumerate(by_id[lid]["ends"]) if end == name]
         if not ends:
             raise InputError(f"line {lid} is not attached to point {point}", key=key)
-        k, string_end = _string_of(strings, lid, name, key, prefix="line")
+        k, string_end = _string_of(strings, lid, name, None, key, prefix="line")
         releasable(strings[k], string_end, f"line{lid}", key)
         failures.append(Failure(f"line{lid}", ENDS[ends[0]], time or None, tension or None, k, string_end, key))
     _distinct(failures)
