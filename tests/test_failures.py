@@ -439,3 +439,17 @@ def test_a_failure_names_a_line_end_as_the_scene_wrote_it(tmp_path):
         assert scene.lines[failure.string].ends[failure.string_end] == ("p1" if end == "anchor" else "a1")
     (failure,) = hang_scene(tmp_path, '[[failures]]\nline = "line1"\nend = "fairlead"\ntime = 1.0\n').failures
     assert (failure.string, failure.string_end) == (0, 1)
+
+
+def test_cablefem_run_says_when_an_end_let_go(tmp_path, capsys):
+    """``cablefem run`` prints a line per failure with the time and tension summary.json has, and says
+    so of an end that did not let go before the run ended."""
+    path = tmp_path / "hang.toml"
+    path.write_text(HANG.format(damping=0.05, cd=8.0, cd_t=0.5, ca=1.0, integrator="bdf2", dt=0.05, duration=1.0,
+                                solver="", failures='[[failures]]\nline = "line1"\nend = "anchor"\ntime = 0.5\n'
+                                '[[failures]]\nline = "line1"\nend = "fairlead"\ntime = 5.0\n'))
+    assert main(["run", str(path), "--out", str(tmp_path / "out")]) == 0
+    printed = capsys.readouterr().out
+    anchor, fairlead = json.loads((tmp_path / "out" / "summary.json").read_text())["failures"]
+    assert f"line1: anchor let go at 0.5 s, its tension {anchor['tension_at_release']:.4e} N" in printed
+    assert fairlead["released_at"] is None and "line1: fairlead did not let go" in printed
