@@ -453,3 +453,18 @@ def test_cablefem_run_says_when_an_end_let_go(tmp_path, capsys):
     anchor, fairlead = json.loads((tmp_path / "out" / "summary.json").read_text())["failures"]
     assert f"line1: anchor let go at 0.5 s, its tension {anchor['tension_at_release']:.4e} N" in printed
     assert fairlead["released_at"] is None and "line1: fairlead did not let go" in printed
+
+
+@pytest.mark.parametrize("integrator", ["bdf2", "generalized-alpha"])
+def test_adaptive_steps_land_on_a_failure_time(integrator, tmp_path):
+    """With adaptive steps (error control; dt the largest step) the steps land on a failure's time as
+    on an output time: the anchor lets go at 0.37 s, between two frames, to round-off (the adaptive
+    steps sum to it), the run's rows carry that time and the anchor's tension is 0 after it."""
+    scene = hang_scene(tmp_path, '[[failures]]\nline = "line1"\nend = "anchor"\ntime = 0.37\n',
+                       integrator=integrator, duration=1.0, solver="adaptive = true")
+    (failure,) = run_scene(scene, str(tmp_path / "out"), progress=False)["failures"]
+    assert failure["released_at"] == pytest.approx(0.37, abs=1e-12)
+    table = rows(tmp_path / "out")
+    at = int(np.argmin(np.abs(table["t"] - 0.37)))
+    assert abs(table["t"][at] - 0.37) < 1e-9 and table["anchor_tension"][at] > 0.0
+    assert np.all(table["anchor_tension"][at + 1:] == 0.0)
