@@ -468,3 +468,40 @@ def test_adaptive_steps_land_on_a_failure_time(integrator, tmp_path):
     at = int(np.argmin(np.abs(table["t"] - 0.37)))
     assert abs(table["t"][at] - 0.37) < 1e-9 and table["anchor_tension"][at] > 0.0
     assert np.all(table["anchor_tension"][at + 1:] == 0.0)
+
+
+def test_a_march_that_fails_while_a_tension_is_watched_goes_on_step_by_step(tmp_path, monkeypatch):
+    """Where the march of an output interval in one call fails (here: made to, for every call of more
+    than one step while the anchor is held), the interval is taken again one step at a time from its
+    snapshot, where the end may let go before the step that failed: a threshold never reached then
+    runs to the end with the intact run's rows (1e-9), and one that is reached lets go at the same
+    step as without the fault, with the same rows."""
+    from cablefem.dynamics.group import Group
+    from cablefem.errors import ConvergenceError
+
+    never = '[[failures]]\nline = "line1"\nend = "anchor"\ntension = 1.0e9\n'
+    reached = '[[failures]]\nline = "line1"\nend = "anchor"\ntension = 420.0\n'
+    plain = {}
+    for name, failure in (("intact", ""), ("reached", reached)):
+        out = tmp_path / name
+        plain[name] = run_scene(_heaving(tmp_path, failure, name=f"{name}.toml", duration=2.0), str(out),
+                                progress=False)
+        plain[name]["rows"] = rows(out)
+    original = Group.march
+
+    def failing_in_one_call(self, times):
+        if len(times) > 1 and self.members[0].fem.prescribed[0]:
+            error = ConvergenceError("a march of several steps fails (made to)")
+            error.forces = np.zeros((0, len(self.members), 2, 3))
+            raise error
+        return original(self, times)
+
+    monkeypatch.setattr(Group, "march", failing_in_one_call)
+    for name, failure in (("intact", never), ("reached", reached)):
+        out = tmp_path / f"{name}-faulty"
+        summary = run_scene(_heaving(tmp_path, failure, name=f"{name}-faulty.toml", duration=2.0), str(out),
+                            progress=False)
+        assert summary["completed"]
+        for column, values in plain[name]["rows"].items():
+            np.testing.assert_allclose(rows(out)[column], values, rtol=1e-9, atol=1e-9)
+    assert summary["failures"][0]["released_at"] == plain["reached"]["failures"][0]["released_at"]

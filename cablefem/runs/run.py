@@ -255,10 +255,15 @@ def _march_to_tension(integrators, groups, times, write, failures):
         for member in group.members:
             member.contraction = -1.0  # the kept factors are of a later state
     rows = []
-    for tk in times[:k + 1]:
-        rows += _march(integrators, groups, [tk], write)
-        if failures.due(rows[-1]):
-            break
+    try:
+        for tk in times[:k + 1]:
+            rows += _march(integrators, groups, [tk], write)
+            if failures.due(rows[-1]):
+                break
+    except ConvergenceError:
+        if rows:  # the steps taken before the one that failed
+            write(rows)
+        raise
     return rows
 
 
