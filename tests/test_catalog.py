@@ -18,7 +18,7 @@ from cablefem.loads.friction import IsotropicFriction
 from cablefem.model.scene import Contact, Friction
 from cablefem.fem.system import LineSystem
 
-from test_loads import (assert_tangent_matches_finite_differences, line_state, soil_state, soil_system,
+from test_loads import (ROPE, assert_tangent_matches_finite_differences, line_state, soil_state, soil_system,
                         system_with_all_loads)
 
 #: every catalog load, the two that see the current once more in a current varying with depth, and
@@ -31,6 +31,11 @@ PROFILE = CurrentProfile.from_arrays([-130.0, -70.0, -30.0, 5.0],
                                      [[0.1, 0.0, 0.0], [0.4, -0.2, 0.02], [0.9, 0.3, 0.0], [1.4, 0.1, -0.05]], "test")
 SEABED = Plane.from_slope([-600.0, 0.0, -100.0], np.radians(20.0), np.pi / 2)
 LAW = IsotropicFriction(0.3, 1.2, 0.05)
+#: the element kinds every load is held on: Lagrange P1-P3 and the C1 cubic Hermite
+ORDERS = [1, 2, 3, "hermite"]
+#: the soft rope bending: EI of the order of its tension times an element's length squared, so that
+#: the bending's share of the tangent is not swamped
+BENT_ROPE = replace(ROPE, EI=2.0e4)
 
 
 def one_load_system(name, order):
@@ -39,11 +44,15 @@ def one_load_system(name, order):
     in two segments with a clump weight at their joint and a buoy at its free fairlead end, half out
     of the water; the soil, whose points lie below the seabed, on its own line
     (``test_loads.soil_system``). '+profile': the same load in a sheared current; '+opening': the
-    seabed's damper acting on points moving out too (MoorDyn-C's law)."""
+    seabed's damper acting on points moving out too (MoorDyn-C's law); the bending, on Hermite
+    elements only, of the rope with EI."""
     name, _, variant = name.partition("+")
+    if name == "bending" and order != "hermite":
+        pytest.skip("bending needs Hermite elements (a line type with EI > 0 is refused on Lagrange ones)")
     profile = variant == "profile"
     system = (soil_system(SEABED, order) if name == "soil"
-              else system_with_all_loads(SEABED, LAW, order, profile=PROFILE if profile else None))
+              else system_with_all_loads(SEABED, LAW, order, profile=PROFILE if profile else None,
+                                         line_type=BENT_ROPE if name == "bending" else ROPE))
     if name == "points":
         line = system.line
         seg = line.segments[0]
@@ -73,7 +82,7 @@ def reference(system, X, V, A, v_x, a_x):
     return R + (M @ A.ravel()).reshape(A.shape), K.toarray()
 
 
-@pytest.mark.parametrize("order", [1, 2, 3])
+@pytest.mark.parametrize("order", ORDERS)
 @pytest.mark.parametrize("name", NAMES)
 def test_compiled_face_equals_the_numpy_face(name, order, rng):
     system = one_load_system(name, order)
@@ -86,13 +95,16 @@ def test_compiled_face_equals_the_numpy_face(name, order, rng):
     np.testing.assert_allclose(fused.dense(band), K_ref, rtol=0, atol=1e-12 * np.abs(K_ref).max())
 
 
-@pytest.mark.parametrize("order", [1, 2])
+@pytest.mark.parametrize("order", [1, 2, "hermite"])
 @pytest.mark.parametrize("name", NAMES)
 def test_numpy_face_tangent_matches_finite_differences(name, order, rng):
     system = one_load_system(name, order)
     state, X, V, A = load_state(system, name, rng)
-
-    assert_tangent_matches_finite_differences(system, state, X, V, A, rng.standard_normal((2, *X.shape)))
+    directions = rng.standard_normal((2, *X.shape))
+    fem = system.fem
+    if fem.hermite:  # a tangent row moves points by up to ~0.15 h per unit: the same scale as the positions'
+        directions[:, fem.n_vertices:] /= float(np.max(np.diff(fem.mesh.p[0])))
+    assert_tangent_matches_finite_differences(system, state, X, V, A, directions)
 
 
 def test_every_load_has_its_parameters_by_name_in_the_element_record():
@@ -162,7 +174,7 @@ def test_registering_a_load_after_the_kernels_were_built_is_refused():
 
 @pytest.mark.parametrize("name", [spec.name for spec in catalog.CATALOG if spec.rule != "node"])
 def test_the_point_loops_call_only_the_lines_loads_and_the_others_would_add_nothing(name, rng):
-    system = one_load_system(name, 2)
+    system = one_load_system(name, "hermite" if name == "bending" else 2)
     state, X, V, A = load_state(system, name, rng)
     fused = FusedEvaluator.for_system(system, system.props["mass"])
     layout, pts = catalog.layout(), fused.points

@@ -55,8 +55,6 @@ MOORDYN = [
     moordyn("dtm-negative", "OPTIONS.dtM: must be > 0", {"0.0002    dtM": "-0.0002   dtM"}),
     moordyn("tmax-huge", "OPTIONS.TMax: 1e+300 s in steps", {"850.0     WtrDpth": "850.0     WtrDpth\n1e300     TMax"}),
     moordyn("point-x-huge", "line 11: POINTS.1.X: -1e+300 m is beyond", {"-1130.0": "-1e300 "}),
-    moordyn("anchor-above-water", "line 11: POINTS.1: z = 50 m is above the still water surface",
-            {"-1130.0   0.0   -850.0": "-1130.0   0.0   50.0  "}),
     moordyn("anchor-below-seabed", "line 11: POINTS.1: the anchor lies 50 m below the seabed",
             {"850.0     WtrDpth": "800.0     WtrDpth"}),
     moordyn("fairlead-below-seabed", "line 13: POINTS.3: the fairlead lies 50 m below the seabed",

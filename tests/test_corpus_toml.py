@@ -99,10 +99,6 @@ LINES = [
     toml_case("strain-at-rest", "absurd strain of 28.2 %", {ANCHOR: "anchor = [-800.0, 0.0, -150.0]"}),
     toml_case("duplicate-line", "duplicate line name 'line1'", {"[seabed]": '[[lines]]\nname = "line1"\n'
               'anchor = [-560.0, 1.0, -150.0]\nfairlead = [0.0, 1.0, 0.0]\n' + LINE + "\n[seabed]"}),
-    toml_case("anchor-above-water", "lines[0].anchor: z = 50 m is above the still water surface",
-              {ANCHOR: "anchor = [-560.0, 0.0, 50.0]"}),
-    toml_case("both-ends-in-air", "lines[0].anchor: z = 50 m is above",
-              {ANCHOR: "anchor = [-500.0, 0.0, 50.0]", FAIRLEAD: "fairlead = [0.0, 0.0, 60.0]"}),
     toml_case("anchor-below-seabed", "the anchor lies 200 m below the seabed",
               {ANCHOR: "anchor = [-500.0, 0.0, -350.0]"}),
     toml_case("padeye-needs-soil", "needs a [soil] table", {ANCHOR: "anchor = [-500.0, 0.0, -155.0]"}),

@@ -15,7 +15,11 @@ where its spec ``reads`` it: friction reads the contact's ``ctx.contact.normal_f
 branch state to the point's state record, reads its holds and its committed history, writes its
 trial history, and adds its force and Jacobian blocks to the output record (``OUT``: f,
 A = -(f_r + v_x f_v + a_x f_a), B = -f_dr at full points; the flux N and D = N_dr + v_x N_dv at
-reduced ones).
+reduced ones). On a line on Hermite elements with bending (``cablefem.loads.bending``;
+``Mesh.ddphi`` not empty) the full points also read r'' (``ctx.ddr``, ``_second_kinematics``) and
+take a flux N and a moment Q against phi', phi'' with the blocks D = N_r', E = N_r'', F = Q_r',
+G = Q_r'' (``_add_second``); a clamped end's tangent row is made its constraint in the end element's
+rows (``_clamp``, ``cablefem.fem.clamp``).
 
 The kernels run with numba's reference counting off (``_nrt=False``: they allocate nothing; with
 it on, every scratch view and array argument costs an atomic increment and decrement, which was
@@ -50,7 +54,8 @@ POINT = [("r", "f8", (3,)), ("dr", "f8", (3,)), ("v", "f8", (3,)), ("dv", "f8", 
          ("a", "f8", (3,)), ("t", "f8", (3,)), ("stretch", "f8"), ("P", "f8", (3, 3)),
          ("gap", "f8"), ("n", "f8", (3,)), ("grad_gap", "f8", (3,)), ("dn", "f8", (3, 3)),
          ("curved", "?"), ("v_x", "f8"), ("a_x", "f8"), ("jac", "?"), ("held", "?"),
-         ("full_loads", "u1", (len(FULL_KERNELS),)), ("reduced_loads", "u1", (len(REDUCED_KERNELS),))]
+         ("full_loads", "u1", (len(FULL_KERNELS),)), ("reduced_loads", "u1", (len(REDUCED_KERNELS),)),
+         ("ddr", "f8", (3,))]  # r'' of a Hermite line with bending (``_second_kinematics``)
 _clash = {name for name, _ in LAYOUT.scratch} & {entry[0] for entry in POINT}
 if _clash:
     raise ValueError(f"load name(s) {sorted(_clash)} clash with the point context's own fields")
@@ -58,13 +63,22 @@ if _clash:
 CONTEXT = np.dtype(POINT + list(LAYOUT.scratch), align=True)
 #: what a point kernel adds to
 OUT = np.dtype([("f", "f8", (3,)), ("A", "f8", (3, 3)), ("B", "f8", (3, 3)), ("N", "f8", (3,)),
-                ("D", "f8", (3, 3))], align=True)
+                ("D", "f8", (3, 3)), ("Q", "f8", (3,)), ("E", "f8", (3, 3)), ("F", "f8", (3, 3)),
+                ("G", "f8", (3, 3))], align=True)
 
 #: a line's mesh as the loop reads it: element DOFs (nel, nloc), band positions (N,), basis values,
 #: derivatives and weights at the full and reduced points, mass per length (nel,), band widths, the
 #: first and last band position of an unknown (1 and N - 2 between two prescribed ends, 0 and N - 1
-#: between two free ones), and the vertices of the node loads (k,)
-Mesh = namedtuple("Mesh", "dofs position phi dphi dx rphi rdphi rdx mass kl ku lo hi nodes")
+#: between two free ones), the vertices of the node loads (k,), the second derivatives of the basis
+#: at the full points (nloc, nel, nq) where a load reads r'' (bending; (0, 0, 0) otherwise), and the
+#: clamped ends (2, 8), one array (each field of the mesh is copied with it into every call that takes
+#: it): per end its direction d (0:3) and constraint scale k (3; 0: not clamped), the local DOF of
+#: its tangent row in its element (4), and (5:8, written by every evaluation of an end element) the
+#: row M A + G of the clamped tangent before the constraint replaces it: the clamp's reaction
+#: (``cablefem.fem.clamp.reaction_moments``)
+Mesh = namedtuple("Mesh", "dofs position phi dphi dx rphi rdphi rdx mass kl ku lo hi nodes ddphi clamp")
+#: the columns of ``Mesh.clamp``
+CLAMP_SCALE, CLAMP_LOCAL, CLAMP_ROWS = 3, 4, 5
 #: the seabed at the full points: a plane (nx, ny, nz, offset), or an empty plane and the
 #: projection's gap (nel, nq), normal, its gradient (nel, nq, 3) and the normal's (nel, nq, 3, 3)
 Bed = namedtuple("Bed", "plane gap normal grad_gap dnormal")
@@ -109,7 +123,7 @@ def work(nloc):
 @njit(cache=True, inline="always", _nrt=False)
 def full_point(ctx, p, old, new, state, hold, out):
     """The full-point loads of the catalog the line has (``ctx.full_loads``), in order, into
-    ``out`` (f, A, B zeroed first)."""
+    ``out`` (f, A, B zeroed first; N, Q, D, E, F, G by ``_second_kinematics`` where they are read)."""
     out.f[:] = 0.0
     if ctx.jac:
         out.A[:, :] = 0.0
@@ -216,6 +230,25 @@ def _kinematics(ctx, mesh, X, V, Acc, e, g):
 
 
 @njit(cache=True, _nrt=False)
+def _second_kinematics(ctx, out, mesh, X, e, g):
+    """r'' at full point g of element e (a load reads it: bending on Hermite elements), and the flux,
+    the moment and their blocks it adds to zeroed."""
+    ddr = ctx.ddr
+    ddr[:] = 0.0
+    for l in range(mesh.dofs.shape[1]):
+        i = _index(mesh.dofs[e, l])
+        for a in range(3):
+            ddr[a] += mesh.ddphi[l, e, g] * X[i, a]
+    out.N[:] = 0.0
+    out.Q[:] = 0.0
+    if ctx.jac:
+        out.D[:, :] = 0.0
+        out.E[:, :] = 0.0
+        out.F[:, :] = 0.0
+        out.G[:, :] = 0.0
+
+
+@njit(cache=True, _nrt=False)
 def _seabed(ctx, bed, e, g):
     """The seabed's projection at full point g of element e: computed on a plane, read otherwise
     (a point on a flat part of a mesh or grid has no normal gradient: ``curved`` is off)."""
@@ -250,6 +283,9 @@ def assemble(mesh, bed, pts, work, state, factors, jac, held, rows, band, elemen
     ctx, out, Re, Ke = work.ctx[0], work.out[0], work.Re, work.Ke
     ctx.v_x, ctx.a_x = factors
     ctx.jac, ctx.held = jac, held
+    second = mesh.ddphi.shape[0] > 0  # r'' read at the full points: a Hermite line with bending
+    first_clamped, last_clamped = mesh.clamp[0, CLAMP_SCALE] > 0.0, mesh.clamp[1, CLAMP_SCALE] > 0.0
+    last = mesh.dofs.shape[0] - 1
     for k in range(pts.full_loads.shape[0]):
         ctx.full_loads[k] = pts.full_loads[k]
     for k in range(pts.reduced_loads.shape[0]):
@@ -263,15 +299,23 @@ def assemble(mesh, bed, pts, work, state, factors, jac, held, rows, band, elemen
         p = pts.params[e]
         for g in range(nq):
             _kinematics(ctx, mesh, X, V, Acc, e, g)
+            if second:
+                _second_kinematics(ctx, out, mesh, X, e, g)
             _seabed(ctx, bed, e, g)
             full_point(ctx, p, pts.full_old[e, g], pts.full_new[e, g], pts.full_state[e, g],
                        pts.full_hold[e, g], out)
             _add_full(Re, Ke, mesh, out, ctx, e, g, jac)
+            if second:
+                _add_second(Re, Ke, mesh, out, e, g, jac)
         for g in range(nr):
             _reduced_kinematics(ctx, mesh, X, V, e, g)
             reduced_point(ctx, p, pts.reduced_old[e, g], pts.reduced_new[e, g], pts.reduced_state[e, g],
                           pts.reduced_hold[e, g], out)
             _add_reduced(Re, Ke, mesh, out, e, g, jac)
+        if first_clamped and e == 0:
+            _clamp(Re, Ke, mesh, X, e, 0, jac)
+        if last_clamped and e == last:
+            _clamp(Re, Ke, mesh, X, e, 1, jac)
         _scatter(Re, Ke, mesh, e, jac, rows, band)
 
 
@@ -293,6 +337,51 @@ def _add_full(Re, Ke, mesh, out, ctx, e, g, jac):
                     for b in range(3):
                         Ke[l, a, mm, b] += c_v * out.A[a, b] + c_d * out.B[a, b]
                     Ke[l, a, mm, a] += c_v * a_x * m
+
+
+@njit(cache=True, _nrt=False)
+def _add_second(Re, Ke, mesh, out, e, g, jac):
+    """A full point's flux N and moment Q against phi', phi'' and their blocks D, E, F, G into the
+    element's rows and matrix (a Hermite line with bending)."""
+    w = mesh.dx[e, g]
+    nloc = mesh.dofs.shape[1]
+    for l in range(nloc):
+        d_l, s_l = w * mesh.dphi[l, e, g], w * mesh.ddphi[l, e, g]
+        for a in range(3):
+            Re[l, a] += d_l * out.N[a] + s_l * out.Q[a]
+        if jac:
+            for mm in range(nloc):
+                d_m, s_m = mesh.dphi[mm, e, g], mesh.ddphi[mm, e, g]
+                for a in range(3):
+                    for b in range(3):
+                        Ke[l, a, mm, b] += (d_l * (out.D[a, b] * d_m + out.E[a, b] * s_m)
+                                            + s_l * (out.F[a, b] * d_m + out.G[a, b] * s_m))
+
+
+@njit(cache=True, _nrt=False)
+def _clamp(Re, Ke, mesh, X, e, end, jac):
+    """A clamped end's tangent row in its element's rows and matrix: d (d . R) + k (I - d d^T) X_t
+    and d d^T K_t + k (I - d d^T) on its diagonal block (``cablefem.fem.clamp``)."""
+    d0, d1, d2, k = mesh.clamp[end, 0], mesh.clamp[end, 1], mesh.clamp[end, 2], mesh.clamp[end, CLAMP_SCALE]
+    d = (d0, d1, d2)
+    l = int(mesh.clamp[end, CLAMP_LOCAL])
+    i = _index(mesh.dofs[e, l])
+    along = d0 * Re[l, 0] + d1 * Re[l, 1] + d2 * Re[l, 2]
+    x_along = d0 * X[i, 0] + d1 * X[i, 1] + d2 * X[i, 2]
+    for a in range(3):
+        mesh.clamp[end, CLAMP_ROWS + a] = Re[l, a]
+        Re[l, a] = d[a] * along + k * (X[i, a] - d[a] * x_along)
+    if not jac:
+        return
+    nloc = mesh.dofs.shape[1]
+    for mm in range(nloc):
+        for b in range(3):
+            along = d0 * Ke[l, 0, mm, b] + d1 * Ke[l, 1, mm, b] + d2 * Ke[l, 2, mm, b]
+            for a in range(3):
+                Ke[l, a, mm, b] = d[a] * along
+    for a in range(3):
+        for b in range(3):
+            Ke[l, a, l, b] += k * ((1.0 if a == b else 0.0) - d[a] * d[b])
 
 
 @njit(cache=True, _nrt=False)

@@ -27,6 +27,7 @@ import scipy.sparse.linalg as spla
 
 from cablefem.dynamics import policy, python_ops
 from cablefem.errors import ConvergenceError
+from cablefem.fem import clamp
 from cablefem.fem.forms import mass_matrix
 
 #: the policy on Python ops, for every integrator
@@ -137,9 +138,11 @@ class Integrator:
 
     @cached_property
     def M(self):
-        """The mass matrix (N 3, N 3), CSR (``forms.mass_matrix``); the compiled steps carry the
-        mass in their kernel, so there it is assembled only if M A is needed at a nonzero A."""
-        return mass_matrix(self.system, self.lumped)
+        """The mass matrix (N 3, N 3), CSR (``forms.mass_matrix``), its clamped tangent rows projected
+        as the loads' are (``cablefem.fem.clamp``); the compiled steps carry the mass in their kernel,
+        so there it is assembled only if M A is needed at a nonzero A."""
+        M = mass_matrix(self.system, self.lumped)
+        return clamp.project(self.system.clamps, M, self.fem, free_only=False) if self.system.clamps else M
 
     @cached_property
     def M_free(self):
@@ -203,7 +206,7 @@ class Integrator:
         if self.fused is not None:  # the same, compiled: the mass is the tangent's a_x part
             rows, with_mass = self.fused.evaluate(X, V, A, 0.0, 1.0)
             if np.linalg.norm(rows[fem.free_dofs]) > 1e-12 * self.scale:
-                mass = with_mass - self.fused.evaluate(X, V, A, 0.0, 0.0)[1]
+                mass = self.fused.add_constraints(with_mass - self.fused.evaluate(X, V, A, 0.0, 0.0)[1])
                 factors = self.fused.factorize(mass)
                 if factors is None:
                     raise ConvergenceError(f"{self.name}: the mass matrix is singular at t = {self.t:.6g} s "
@@ -218,6 +221,8 @@ class Integrator:
         # d(G + M A)/dA restricted to the free rows: the acceleration blocks only
         static = system.evaluate(system.state(X, V, A, self.t), jacobian=True)[1]
         K = system.matrix(blocks) - system.matrix(static) + self.M_free
+        if system.clamps:  # the constraint, which the difference took out
+            K = K + clamp.constraint_matrix(system.clamps, fem)
         A[fem.free_dofs] = spla.spsolve(K.tocsc(), rhs).reshape(-1, 3)
         return A
 
@@ -366,6 +371,22 @@ class Integrator:
             points = self.system.end_point_loads(self.X, self.V, self.A, self.t)
             fairlead, anchor = fairlead - points[0], anchor - points[1]
         return fairlead, anchor
+
+    def clamp_moments(self):
+        """Moments (2, 3) [N m] the anchor's and the fairlead's clamp exert on the line at the current
+        state (``clamp.reaction_moments``; zero at an end that is not clamped). Compiled: from the rows
+        the last evaluation of the end elements kept, which an accepted step made at its state."""
+        system = self.system
+        if not system.clamps:
+            return np.zeros((2, 3))
+        if self.fused is not None:
+            from cablefem.compiled.kernels import CLAMP_ROWS
+
+            return clamp.reaction_moments(system, self.X, self.fused.mesh.clamp[:, CLAMP_ROWS:])
+        state = system.state(self.X, self.V, self.A, self.t)
+        rows = system.evaluate(state, jacobian=False, constrained=False)[0]
+        rows = rows + (mass_matrix(system, self.lumped) @ self.A.ravel()).reshape(self.A.shape)
+        return clamp.reaction_moments(system, self.X, rows[list(self.fem.tangent_dofs)])
 
     def statistics(self):
         """Counters as a dict, for summary.json."""

@@ -10,8 +10,8 @@ once for TOML and MoorDyn scenes alike (``cablefem.io.load_scene``), and by
 - settings that exclude each other (adaptive steps need BDF2);
 - problem size: the nodes of all lines, the steps and frames of a run;
 - the line ends against the water and the seabed: no seabed above the still water surface below a
-  line end, no anchor above it, no anchor or fairlead below the seabed (a padeye may lie there only
-  with ``[soil]``);
+  line end, no anchor or fairlead below the seabed (a padeye may lie there only with ``[soil]``);
+  ends above the water are valid where the file puts them (a beam or a jumper in the air);
 - a scene with ``[soil]`` (``check_soil``): a soil with some strength, lines between a fixed padeye
   and a fairlead (no free end, no points on them), every line type's ``nominal_diameter``, each
   padeye on or below the seabed surface (the laid line starts from it up or down to the lying
@@ -111,8 +111,8 @@ def check_run(scene, duration=None, dt=None):
 
 
 def check_ends(scene):
-    """No seabed above the water below a line end, no anchor above the water, no anchor or
-    fairlead more than its line's diameter below the seabed."""
+    """No seabed above the water below a line end, no anchor or fairlead more than its line's
+    diameter below the seabed (an end above the water is valid: a beam or a jumper in the air)."""
     for i, line in enumerate(scene.lines):
         ends = np.array([line.anchor, line.fairlead])
         elevation = np.asarray(scene.seabed.elevation(ends[:, :2]), dtype=float)
@@ -121,9 +121,6 @@ def check_ends(scene):
                 raise _error(scene, "seabed", f"the seabed is {height:.6g} m above the still water "
                              f"surface (z = 0) below the {end} of line '{line.name}' at x = {x:g}, "
                              f"y = {y:g}: a seabed lies below the water")
-        if line.anchor[2] > 0.0:
-            raise _error(scene, f"lines[{i}].anchor", f"z = {line.anchor[2]:g} m is above the still "
-                         "water surface (z = 0): an anchor lies in the water or on the seabed")
         gap = np.asarray(scene.seabed.gap_only(ends), dtype=float)
         in_soil = "soil" in scene.load_settings
         for end, depth, segment in (("anchor", -gap[0], line.segments[0]),

@@ -26,6 +26,7 @@ LIMITS = {
     "diameter": (10.0, "m", "the largest lines, buoyancy modules included, are ~2 m"),
     "mass": (1e5, "kg/m", "the heaviest chains are ~1e3 kg/m"),
     "EA": (1e13, "N", "the stiffest real lines are ~1e10-1e11 N"),
+    "EI": (1e13, "N m^2", "steel risers and umbilicals are ~1e4-1e8 N m^2"),
     "damping_time": (1e6, "s", "beta is ~1e-3 to 1 s"),
     "coefficient": (1e3, "", "drag and added-mass coefficients are ~0.1 to 10"),
     "water_density": (1e5, "kg/m^3", "sea water is 1025 kg/m^3"),

@@ -29,6 +29,7 @@ from cablefem.io.output import (RowsFile, deferred_signals, failure as write_fai
 from cablefem.io.vtk import TimeSeriesWriter, polyline_mesh, series_files
 from cablefem.model.network import anchor_path, boundary_path
 from cablefem.runs.network_output import NetworkRows, body_reference, frame_marks
+from cablefem.runs.bending_rows import BendingRows
 from cablefem.runs.results import LineSampler, line_fields
 from cablefem.statics.scene import run_start
 
@@ -92,7 +93,8 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
                "notes": list(scene.notes) + setting_warnings(scene, dt), "dt": dt, "duration": duration}
     integrators, outputs, status = [], {}, "completed"
     step_control = StepControl(solver, dt)
-    tracker = _Extremes([line.name for line in scene.lines], NetworkRows(scene) if scene.points else None)
+    tracker = _Extremes([line.name for line in scene.lines], NetworkRows(scene) if scene.points else None,
+                        BendingRows(scene.lines))
     try:
         seabed_vtu = inside(out_dir, "seabed.vtu")
         try:
@@ -107,7 +109,8 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
                         for system, line, X0 in zip(systems, scene.lines, states)]
         junction_steps(scene, integrators)
         outputs["frames"] = TimeSeriesWriter(out_dir, scene.name)
-        outputs["table"] = RowsFile(inside(out_dir, "tensions.csv"), _columns(scene, tracker.network))
+        tracker.bending.attach(integrators)
+        outputs["table"] = RowsFile(inside(out_dir, "tensions.csv"), _columns(scene, tracker.network, tracker.bending))
         outputs["bar"] = _progress(progress, duration)
         _advance(scene, integrators, outputs, step_control, tracker, duration, dt)
     except KeyboardInterrupt:
@@ -159,6 +162,7 @@ def _advance(scene, integrators, outputs, step_control, tracker, duration, dt):
             frame = int(np.floor((t + near) / every)) + 1
         return t
 
+    tracker.bending.measure(integrators[0].t)
     t = record([(integrators[0].t, [integ.reactions() for integ in integrators])])
     while t < duration - near:
         with deferred_signals():
@@ -166,6 +170,12 @@ def _advance(scene, integrators, outputs, step_control, tracker, duration, dt):
             if solver.adaptive:
                 step_control.advance(integrators, stop - t)
                 rows = [(integrators[0].t, [integ.reactions() for integ in integrators])]
+                tracker.bending.measure(rows[-1][0])
+            elif tracker.bending:  # the end moments of a bending line need its state after every step
+                rows = []
+                for each in step_control.times(t, stop):
+                    rows += _march(integrators, np.array([each]), lambda rows: table.write(tracker.rows(rows)))
+                    tracker.bending.measure(rows[-1][0])
             else:  # fixed steps to the next output time, each line in one call
                 rows = _march(integrators, step_control.times(t, stop), lambda rows: table.write(tracker.rows(rows)))
             if bar is not None:
@@ -196,6 +206,7 @@ def _finish(summary, status, integrators, outputs, step_control, tracker, start,
             "steps": sum(s["steps"] for s in stats),
             "newton_iterations": sum(s["newton_iterations"] for s in stats),
             "integrator": stats, "tension_extremes": tracker.as_dict(),
+            **({"curvature_extremes": tracker.bending.extremes} if tracker.bending else {}),
             **({"network_extremes": tracker.network.extremes} if tracker.network is not None else {}),
             "adaptive": {"accepted": step_control.accepted, "rejected": step_control.rejected}
             if step_control.adaptive else None})
@@ -233,9 +244,10 @@ def _row(t, forces, extra=()):
     return [f"{x + 0.0:.10g}" for x in [*values, *extra]]  # + 0.0: no "-0"
 
 
-def _columns(scene, network=None):
+def _columns(scene, network=None, bending=None):
     names = ["fairlead_tension", "anchor_tension", "fx", "fy", "fz"]
-    extra = [] if network is None else network.columns()
+    extra = ([] if bending is None else bending.columns(len(scene.lines) > 1)) + \
+        ([] if network is None else network.columns())
     if len(scene.lines) == 1:
         return ["t"] + names + extra
     return ["t"] + [f"{line.name}:{n}" for line in scene.lines for n in names] + extra
@@ -251,18 +263,26 @@ def _progress(progress, duration):
 
 
 class _Extremes:
-    """Largest and smallest fairlead and anchor tensions per line, with their times, and the
-    network's columns and extremes (``network``: a ``NetworkRows`` or None)."""
+    """Largest and smallest fairlead and anchor tensions per line, with their times, the
+    network's columns and extremes (``network``: a ``NetworkRows`` or None) and the bending lines'
+    end moments and curvature extremes (``bending``: a ``BendingRows``)."""
 
-    def __init__(self, names, network=None):
+    def __init__(self, names, network=None, bending=None):
         self.names = names
         self.table = {n: {} for n in names}
         self.network = network
+        self.bending = bending
 
     def rows(self, rows):
         """The tensions.csv rows of ``rows`` (t, forces per line), the extremes updated."""
         for t, forces in rows:
             self.update(t, forces)
+        if self.bending:  # a row a step: the moments at the state each step reached (``_advance``)
+            moments = [self.bending.values() for _ in rows]
+            if self.network is None:
+                return [_row(t, forces, values) for (t, forces), values in zip(rows, moments)]
+            extra = self.network.values([t for t, _ in rows], [forces for _, forces in rows])
+            return [_row(t, forces, [*m, *values]) for (t, forces), m, values in zip(rows, moments, extra)]
         if self.network is None:
             return [_row(t, forces) for t, forces in rows]
         extra = self.network.values([t for t, _ in rows], [forces for _, forces in rows])

@@ -162,9 +162,8 @@ class Network:
             if X is None:
                 X = _start(system, targets)
             else:
-                s = fem.scalar_basis.doflocs[0] / self.lines[k].unstretched_length
                 moves = [targets.get(e, X[dof]) - X[dof] for e, dof in enumerate(fem.end_dofs)]
-                X = X + (1.0 - s)[:, None] * moves[0] + s[:, None] * moves[1]
+                X = X + _shift(fem, self.lines[k].unstretched_length, moves)
             X1, its, norm, _, ok = newton(system, X, tolerance, max_iterations)
             if not ok:  # a string far stiffer than its loads (tripod.txt's float) from where it was
                 X1, more, norm, _, ok = axial_continuation(system, X, tolerance, max_iterations)
@@ -252,6 +251,20 @@ class Network:
     def length(self):
         """A length scale [m]: the shortest coupled string."""
         return min(self.lines[k].unstretched_length for k in self.coupled)
+
+
+def _shift(fem, length, moves):
+    """Rows (N, 3) of the displacement that moves a line's ends by ``moves`` (anchor, fairlead) and
+    its points in proportion to their arc length: on Hermite elements the vertex tangents turn by
+    its slope (moves[1] - moves[0]) / L."""
+    if fem.hermite:
+        s = fem.mesh.p[0] / length
+        rows = np.empty((fem.n_dofs, 3))
+        rows[: fem.n_vertices] = (1.0 - s)[:, None] * moves[0] + s[:, None] * moves[1]
+        rows[fem.n_vertices:] = (moves[1] - moves[0]) / length
+        return rows
+    s = fem.scalar_basis.doflocs[0] / length
+    return (1.0 - s)[:, None] * moves[0] + s[:, None] * moves[1]
 
 
 def _start(system, targets):

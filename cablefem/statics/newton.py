@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse.linalg as spla
 
+from cablefem.fem import clamp
 from cablefem.statics.start_shape import initial_shape
 
 
@@ -42,28 +43,56 @@ def catenary_guess(system):
     return initial_shape(system)[0]
 
 
+#: Newton on a line that bends: full steps taken without a line search while the residual stays
+#: above the lowest one seen for at most this many in a row, then back to that point and its line
+#: search (Chamberlain et al.'s watchdog, 1982). A bending line far stiffer axially than in bending
+#: (EA L^2 / EI ~ 1e8) needs its full steps: the first one from a straight start stretches it by
+#: (deflection / L)^2, a residual ~1e4 times its load, and Newton then converges in a few
+#: iterations, where the line search crawls along the inextensible shapes (verification/bending)
+WATCHDOG = 8
+
+
 def newton(system, X, tolerance=1e-8, max_iterations=50, scale=None):
     """Newton-Armijo on the free rows of system's residual from X (N, 3); returns
-    (X, iterations, relative residual, history, converged)."""
+    (X, iterations, relative residual, history, converged). A line that bends takes full steps
+    under a watchdog first (``WATCHDOG``)."""
     fem = system.fem
     free = fem.free_dofs
     length = system.line.unstretched_length
     scale = scale or float(np.linalg.norm(system.weight_vector()[free])) or 1.0
-    X = X.copy()
+    X = clamp.satisfy(system.clamps, X.copy())
     linear = _Linearisation.of(system)
     residual, tangent = linear.evaluate(X)
     norm = np.linalg.norm(residual[free]) / scale
     energy = None  # the potential energy at X, computed when a line search needs it
     history = [norm]
+    watchdog = WATCHDOG if system.has("bending") else 0
+    best, unimproved = (X, residual, tangent, norm), 0  # the watchdog's lowest residual
     for iteration in range(1, max_iterations + 1):
         if norm <= tolerance:
             return X, iteration - 1, norm, history, True
+        if watchdog and unimproved >= watchdog:  # the full steps did not pay: back to the best point
+            (X, residual, tangent, norm), energy, unimproved = best, None, -1
         step = linear.solve(tangent, residual)
         if step is None or not np.all(np.isfinite(step)):
             return X, iteration, norm, history, False
         small = np.max(np.abs(step)) <= tolerance * length
         slope = float(np.sum(residual[free] * step))  # d(energy)/d(lambda) at lambda = 0
         lam, accepted = 1.0, False
+        if watchdog and unimproved >= 0 and not small:
+            trial = X.copy()
+            trial[free] += step
+            residual_t, tangent_t = linear.evaluate(trial)
+            norm_t = np.linalg.norm(residual_t[free]) / scale
+            unimproved = unimproved + 1 if norm_t > (1.0 - 1e-4) * best[3] else 0
+            if not unimproved:
+                best = (trial, residual_t, tangent_t, norm_t)
+            X, residual, tangent, norm, energy = trial, residual_t, tangent_t, norm_t, None
+            history.append(norm)
+            if norm <= tolerance:
+                return X, iteration, norm, history, True
+            continue
+        unimproved = max(unimproved, 0)
         for _ in range(30):
             trial = X.copy()
             trial[free] += lam * step
@@ -90,6 +119,8 @@ def newton(system, X, tolerance=1e-8, max_iterations=50, scale=None):
         # stalls above it (a residual floor scaled by EA and G_K accepted anything at large EA)
         stalled = lam == 1.0 and norm_t > 0.5 * norm and small
         X, residual, tangent, norm, energy = trial, residual_t, tangent_t, norm_t, energy_t
+        if watchdog and norm < best[3]:
+            best = (X, residual, tangent, norm)
         history.append(norm)
         if norm <= tolerance or stalled:
             return X, iteration, norm, history, True

@@ -27,6 +27,7 @@ import math
 
 import numpy as np
 
+from cablefem.fem import clamp
 from cablefem.statics.catenary import elastic_catenary, inclined_catenary
 from cablefem.geometry import Plane
 from cablefem.model.line import Line
@@ -69,6 +70,7 @@ def initial_shape(system):
     X = fem.interpolate(positions)
     _rest_on_seabed(system, X, max(weight, 0.0))
     X[fem.anchor_dof], X[fem.fairlead_dof] = line.anchor, line.fairlead
+    clamp.satisfy(system.clamps, X)
     return X, slack
 
 
@@ -112,7 +114,7 @@ def _floating(line, weight, lift, EA):
     mirror = np.array([1.0, 1.0, -1.0])
     shift = np.array([0.0, 0.0, 2.0 * level])
     mirrored = Line(line.name, shift + mirror * line.anchor, shift + mirror * line.fairlead, line.segments,
-                    line.order)
+                    line.order, element=line.element)
     surface = Plane((0.0, 0.0, level), (0.0, 0.0, 1.0))
     positions = slack_layout(mirrored, surface, lift, EA)
     slack = positions is not None
