@@ -106,7 +106,7 @@ class FusedEvaluator:
         vertices, node_params = pack_nodes(system.loads)
         # r'' at the full points only where a load reads it (bending on Hermite elements)
         second = fem.full.ddphi if system.has("bending") else np.zeros((0, 0, 0))
-        clamp = np.zeros((2, 8))  # ``kernels.Mesh``
+        clamp = np.zeros((2, 8))  # ``kernels.Points``
         clamp[:, kernels.CLAMP_LOCAL] = (2, 3)  # the tangents' local DOFs in the end elements
         for c in system.clamps:
             end = fem.tangent_dofs.index(c.row)
@@ -117,9 +117,10 @@ class FusedEvaluator:
         c = np.ascontiguousarray
         self.mesh = kernels.Mesh(dofs, position, c(fem.full.phi), c(fem.full.dphi), c(fem.full.dx), c(fem.reduced.phi),
                                  c(fem.reduced.dphi), c(fem.reduced.dx), np.asarray(mass, dtype=float), self.kl,
-                                 self.ku, lo, hi, vertices, c(second), clamp)
+                                 self.ku, lo, hi, vertices)
         nel, nq, nr = fem.n_elements, fem.full.dx.shape[1], fem.reduced.dx.shape[1]
-        self.points = kernels.points(pack_params(system.loads, nel), system.history, nq, nr, node_params)
+        self.points = kernels.points(pack_params(system.loads, nel), system.history, nq, nr, node_params, c(second),
+                                     clamp)
         # the branch state where the last Newton step started (``keep``), for the holds (``hold``)
         self.base_full = self.points.full_state.copy()
         self.base_reduced = self.points.reduced_state.copy()

@@ -16,10 +16,12 @@ branch state to the point's state record, reads its holds and its committed hist
 trial history, and adds its force and Jacobian blocks to the output record (``OUT``: f,
 A = -(f_r + v_x f_v + a_x f_a), B = -f_dr at full points; the flux N and D = N_dr + v_x N_dv at
 reduced ones). On a line on Hermite elements with bending (``cablefem.loads.bending``;
-``Mesh.ddphi`` not empty) the full points also read r'' (``ctx.ddr``, ``_second_kinematics``) and
+``Points.ddphi`` not empty) the full points also read r'' (``ctx.ddr``, ``_second_kinematics``) and
 take a flux N and a moment Q against phi', phi'' with the blocks D = N_r', E = N_r'', F = Q_r',
 G = Q_r'' (``_add_second``); a clamped end's tangent row is made its constraint in the end element's
-rows (``_clamp``, ``cablefem.fem.clamp``).
+rows (``_clamp``, ``cablefem.fem.clamp``). The element loop is compiled twice, with and without
+these (``_elements``), so that a line without bending runs no test for them per point, and its
+basis and clamps ride in ``Points``, not ``Mesh``, whose arrays the per-point calls copy.
 
 The kernels run with numba's reference counting off (``_nrt=False``: they allocate nothing; with
 it on, every scratch view and array argument costs an atomic increment and decrement, which was
@@ -69,15 +71,9 @@ OUT = np.dtype([("f", "f8", (3,)), ("A", "f8", (3, 3)), ("B", "f8", (3, 3)), ("N
 #: a line's mesh as the loop reads it: element DOFs (nel, nloc), band positions (N,), basis values,
 #: derivatives and weights at the full and reduced points, mass per length (nel,), band widths, the
 #: first and last band position of an unknown (1 and N - 2 between two prescribed ends, 0 and N - 1
-#: between two free ones), the vertices of the node loads (k,), the second derivatives of the basis
-#: at the full points (nloc, nel, nq) where a load reads r'' (bending; (0, 0, 0) otherwise), and the
-#: clamped ends (2, 8), one array (each field of the mesh is copied with it into every call that takes
-#: it): per end its direction d (0:3) and constraint scale k (3; 0: not clamped), the local DOF of
-#: its tangent row in its element (4), and (5:8, written by every evaluation of an end element) the
-#: row M A + G of the clamped tangent before the constraint replaces it: the clamp's reaction
-#: (``cablefem.fem.clamp.reaction_moments``)
-Mesh = namedtuple("Mesh", "dofs position phi dphi dx rphi rdphi rdx mass kl ku lo hi nodes ddphi clamp")
-#: the columns of ``Mesh.clamp``
+#: between two free ones), and the vertices of the node loads (k,)
+Mesh = namedtuple("Mesh", "dofs position phi dphi dx rphi rdphi rdx mass kl ku lo hi nodes")
+#: the columns of ``Points.clamp``
 CLAMP_SCALE, CLAMP_LOCAL, CLAMP_ROWS = 3, 4, 5
 #: the seabed at the full points: a plane (nx, ny, nz, offset), or an empty plane and the
 #: projection's gap (nel, nq), normal, its gradient (nel, nq, 3) and the normal's (nel, nq, 3, 3)
@@ -85,9 +81,17 @@ Bed = namedtuple("Bed", "plane gap normal grad_gap dnormal")
 #: the records of ``cablefem.loads.catalog``: parameters (nel,), and per full (nel, nq) and reduced
 #: (nel, nr) point the committed and trial history, the branch state and the holds; the node loads'
 #: parameters (k,); which full and reduced loads of the catalog the line has (bool, in catalog
-#: order: the point loops call only those, so that a load a scene does not use costs no call)
+#: order: the point loops call only those, so that a load a scene does not use costs no call); the
+#: second derivatives of the basis at the full points (nloc, nel, nq) where a load reads r''
+#: (bending on Hermite elements; (0, 0, 0) otherwise); and the clamped ends (2, 8): per end its
+#: direction d (0:3) and constraint scale k (3; 0: not clamped), the local DOF of its tangent row in
+#: its element (4), and (5:8, written by every evaluation of an end element) the row M A + G of the
+#: clamped tangent before the constraint replaces it: the clamp's reaction
+#: (``cablefem.fem.clamp.reaction_moments``). Not in ``Mesh``: the per-point calls that take the mesh
+#: copy each of its arrays, which lines without bending would pay for
 Points = namedtuple("Points", "params full_old full_new full_state full_hold "
-                              "reduced_old reduced_new reduced_state reduced_hold nodes full_loads reduced_loads")
+                              "reduced_old reduced_new reduced_state reduced_hold nodes full_loads reduced_loads "
+                              "ddphi clamp")
 #: scratch: a context (the loads' scratch in it) and an output record, an element's rows (nloc, 3)
 #: and matrix (nloc, 3, nloc, 3)
 Work = namedtuple("Work", "ctx out Re Ke")
@@ -98,15 +102,16 @@ def records(dtype, shape):
     return np.zeros(shape, dtype=dtype)
 
 
-def points(params, history, nq, nr, nodes):
+def points(params, history, nq, nr, nodes, ddphi, clamp):
     """Per-point records (``Points``) for ``params`` (nel,) with nq full and nr reduced points: the
     history of a ``LineSystem`` (``system.history``, shared: the compiled and the numpy path commit
-    the same records), fresh branch state and holds; ``nodes``: the node loads' parameters (k,)."""
+    the same records), fresh branch state and holds; ``nodes``: the node loads' parameters (k,);
+    ``ddphi``, ``clamp``: the bending's basis and the clamped ends (``Points``)."""
     L, nel = LAYOUT, params.shape[0]
     (full_old, full_new), (reduced_old, reduced_new) = history["full"], history["reduced"]
     return Points(params, full_old, full_new, records(L.full_state, (nel, nq)), records(L.full_hold, (nel, nq)),
                   reduced_old, reduced_new, records(L.reduced_state, (nel, nr)), records(L.reduced_hold, (nel, nr)),
-                  nodes, active(params, L.full), active(params, L.reduced))
+                  nodes, active(params, L.full), active(params, L.reduced), ddphi, clamp)
 
 
 def active(params, specs):
@@ -230,7 +235,7 @@ def _kinematics(ctx, mesh, X, V, Acc, e, g):
 
 
 @njit(cache=True, _nrt=False)
-def _second_kinematics(ctx, out, mesh, X, e, g):
+def _second_kinematics(ctx, out, mesh, ddphi, X, e, g):
     """r'' at full point g of element e (a load reads it: bending on Hermite elements), and the flux,
     the moment and their blocks it adds to zeroed."""
     ddr = ctx.ddr
@@ -238,7 +243,7 @@ def _second_kinematics(ctx, out, mesh, X, e, g):
     for l in range(mesh.dofs.shape[1]):
         i = _index(mesh.dofs[e, l])
         for a in range(3):
-            ddr[a] += mesh.ddphi[l, e, g] * X[i, a]
+            ddr[a] += ddphi[l, e, g] * X[i, a]
     out.N[:] = 0.0
     out.Q[:] = 0.0
     if ctx.jac:
@@ -279,17 +284,30 @@ def assemble(mesh, bed, pts, work, state, factors, jac, held, rows, band, elemen
     banded tangent of the free unknowns added to ``band`` (LAPACK's layout); state: (X, V, A),
     each (N, 3); factors: (v_x, a_x); held: the loads keep the branches the hold records hold
     (Newton's corrections). Kernel, so over 12 arguments' worth of data comes in named tuples."""
-    X, V, Acc = state
-    ctx, out, Re, Ke = work.ctx[0], work.out[0], work.Re, work.Ke
+    ctx = work.ctx[0]
     ctx.v_x, ctx.a_x = factors
     ctx.jac, ctx.held = jac, held
-    second = mesh.ddphi.shape[0] > 0  # r'' read at the full points: a Hermite line with bending
-    first_clamped, last_clamped = mesh.clamp[0, CLAMP_SCALE] > 0.0, mesh.clamp[1, CLAMP_SCALE] > 0.0
-    last = mesh.dofs.shape[0] - 1
     for k in range(pts.full_loads.shape[0]):
         ctx.full_loads[k] = pts.full_loads[k]
     for k in range(pts.reduced_loads.shape[0]):
         ctx.reduced_loads[k] = pts.reduced_loads[k]
+    if pts.ddphi.shape[0] > 0 or pts.clamp[0, CLAMP_SCALE] > 0.0 or pts.clamp[1, CLAMP_SCALE] > 0.0:
+        _elements(mesh, bed, pts, work, state, jac, rows, band, elements, True)
+    else:  # the loop compiled without the bending's branches
+        _elements(mesh, bed, pts, work, state, jac, rows, band, elements, False)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def _elements(mesh, bed, pts, work, state, jac, rows, band, elements, bends):
+    """``assemble``'s loop over ``elements``; ``bends``, a constant at each call (the compiler
+    drops its branches where it is False): r'' read at the full points (a Hermite line with
+    bending) and the clamped ends' rows made their constraints."""
+    X, V, Acc = state
+    ctx, out, Re, Ke = work.ctx[0], work.out[0], work.Re, work.Ke
+    second = bends and pts.ddphi.shape[0] > 0
+    first_clamped = bends and pts.clamp[0, CLAMP_SCALE] > 0.0
+    last_clamped = bends and pts.clamp[1, CLAMP_SCALE] > 0.0
+    last = mesh.dofs.shape[0] - 1
     nq, nr = mesh.dx.shape[1], mesh.rdx.shape[1]
     for element in elements:
         e = _index(element)  # unsigned: no wrap-around fix-up on the many accesses by e (banded.py)
@@ -300,22 +318,22 @@ def assemble(mesh, bed, pts, work, state, factors, jac, held, rows, band, elemen
         for g in range(nq):
             _kinematics(ctx, mesh, X, V, Acc, e, g)
             if second:
-                _second_kinematics(ctx, out, mesh, X, e, g)
+                _second_kinematics(ctx, out, mesh, pts.ddphi, X, e, g)
             _seabed(ctx, bed, e, g)
             full_point(ctx, p, pts.full_old[e, g], pts.full_new[e, g], pts.full_state[e, g],
                        pts.full_hold[e, g], out)
             _add_full(Re, Ke, mesh, out, ctx, e, g, jac)
             if second:
-                _add_second(Re, Ke, mesh, out, e, g, jac)
+                _add_second(Re, Ke, mesh, pts.ddphi, out, e, g, jac)
         for g in range(nr):
             _reduced_kinematics(ctx, mesh, X, V, e, g)
             reduced_point(ctx, p, pts.reduced_old[e, g], pts.reduced_new[e, g], pts.reduced_state[e, g],
                           pts.reduced_hold[e, g], out)
             _add_reduced(Re, Ke, mesh, out, e, g, jac)
         if first_clamped and e == 0:
-            _clamp(Re, Ke, mesh, X, e, 0, jac)
+            _clamp(Re, Ke, mesh, pts.clamp, X, e, 0, jac)
         if last_clamped and e == last:
-            _clamp(Re, Ke, mesh, X, e, 1, jac)
+            _clamp(Re, Ke, mesh, pts.clamp, X, e, 1, jac)
         _scatter(Re, Ke, mesh, e, jac, rows, band)
 
 
@@ -340,18 +358,18 @@ def _add_full(Re, Ke, mesh, out, ctx, e, g, jac):
 
 
 @njit(cache=True, _nrt=False)
-def _add_second(Re, Ke, mesh, out, e, g, jac):
+def _add_second(Re, Ke, mesh, ddphi, out, e, g, jac):
     """A full point's flux N and moment Q against phi', phi'' and their blocks D, E, F, G into the
     element's rows and matrix (a Hermite line with bending)."""
     w = mesh.dx[e, g]
     nloc = mesh.dofs.shape[1]
     for l in range(nloc):
-        d_l, s_l = w * mesh.dphi[l, e, g], w * mesh.ddphi[l, e, g]
+        d_l, s_l = w * mesh.dphi[l, e, g], w * ddphi[l, e, g]
         for a in range(3):
             Re[l, a] += d_l * out.N[a] + s_l * out.Q[a]
         if jac:
             for mm in range(nloc):
-                d_m, s_m = mesh.dphi[mm, e, g], mesh.ddphi[mm, e, g]
+                d_m, s_m = mesh.dphi[mm, e, g], ddphi[mm, e, g]
                 for a in range(3):
                     for b in range(3):
                         Ke[l, a, mm, b] += (d_l * (out.D[a, b] * d_m + out.E[a, b] * s_m)
@@ -359,17 +377,17 @@ def _add_second(Re, Ke, mesh, out, e, g, jac):
 
 
 @njit(cache=True, _nrt=False)
-def _clamp(Re, Ke, mesh, X, e, end, jac):
+def _clamp(Re, Ke, mesh, clamp, X, e, end, jac):
     """A clamped end's tangent row in its element's rows and matrix: d (d . R) + k (I - d d^T) X_t
     and d d^T K_t + k (I - d d^T) on its diagonal block (``cablefem.fem.clamp``)."""
-    d0, d1, d2, k = mesh.clamp[end, 0], mesh.clamp[end, 1], mesh.clamp[end, 2], mesh.clamp[end, CLAMP_SCALE]
+    d0, d1, d2, k = clamp[end, 0], clamp[end, 1], clamp[end, 2], clamp[end, CLAMP_SCALE]
     d = (d0, d1, d2)
-    l = int(mesh.clamp[end, CLAMP_LOCAL])
+    l = int(clamp[end, CLAMP_LOCAL])
     i = _index(mesh.dofs[e, l])
     along = d0 * Re[l, 0] + d1 * Re[l, 1] + d2 * Re[l, 2]
     x_along = d0 * X[i, 0] + d1 * X[i, 1] + d2 * X[i, 2]
     for a in range(3):
-        mesh.clamp[end, CLAMP_ROWS + a] = Re[l, a]
+        clamp[end, CLAMP_ROWS + a] = Re[l, a]
         Re[l, a] = d[a] * along + k * (X[i, a] - d[a] * x_along)
     if not jac:
         return

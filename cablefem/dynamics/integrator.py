@@ -382,7 +382,7 @@ class Integrator:
         if self.fused is not None:
             from cablefem.compiled.kernels import CLAMP_ROWS
 
-            return clamp.reaction_moments(system, self.X, self.fused.mesh.clamp[:, CLAMP_ROWS:])
+            return clamp.reaction_moments(system, self.X, self.fused.points.clamp[:, CLAMP_ROWS:])
         state = system.state(self.X, self.V, self.A, self.t)
         rows = system.evaluate(state, jacobian=False, constrained=False)[0]
         rows = rows + (mass_matrix(system, self.lumped) @ self.A.ravel()).reshape(self.A.shape)
