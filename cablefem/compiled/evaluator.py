@@ -16,6 +16,7 @@ import numpy as np
 from scipy.linalg import lapack
 
 from cablefem.compiled import kernels
+from cablefem.compiled.hermite import CLAMP_LOCAL
 from cablefem.geometry import Plane
 from cablefem.loads import catalog
 
@@ -107,10 +108,10 @@ class FusedEvaluator:
         # r'' at the full points only where a load reads it (bending on Hermite elements)
         second = fem.full.ddphi if system.has("bending") else np.zeros((0, 0, 0))
         clamp = np.zeros((2, 8))  # ``kernels.Points``
-        clamp[:, kernels.CLAMP_LOCAL] = (2, 3)  # the tangents' local DOFs in the end elements
+        clamp[:, CLAMP_LOCAL] = (2, 3)  # the tangents' local DOFs in the end elements
         for c in system.clamps:
             end = fem.tangent_dofs.index(c.row)
-            clamp[end, :kernels.CLAMP_LOCAL] = (*c.direction, c.scale)
+            clamp[end, :CLAMP_LOCAL] = (*c.direction, c.scale)
         # every array C-ordered: the kernels' types are then the same for every line (scikit-fem's
         # weights are Fortran-ordered, a single column both: P1 and Hermite strings of one junction
         # would otherwise need two compiled loops)

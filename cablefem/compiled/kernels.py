@@ -19,7 +19,7 @@ reduced ones). On a line on Hermite elements with bending (``cablefem.loads.bend
 ``Points.ddphi`` not empty) the full points also read r'' (``ctx.ddr``, ``_second_kinematics``) and
 take a flux N and a moment Q against phi', phi'' with the blocks D = N_r', E = N_r'', F = Q_r',
 G = Q_r'' (``_add_second``); a clamped end's tangent row is made its constraint in the end element's
-rows (``_clamp``, ``cablefem.fem.clamp``). The element loop is compiled twice, with and without
+rows (``_clamp``, ``cablefem.fem.clamp``): ``cablefem.compiled.hermite``. The element loop is compiled twice, with and without
 these (``_elements``), so that a line without bending runs no test for them per point, and its
 basis and clamps ride in ``Points``, not ``Mesh``, whose arrays the per-point calls copy.
 
@@ -38,6 +38,7 @@ from numba import literal_unroll, njit
 from numba import uint64 as _index
 from numba.core.errors import NumbaExperimentalFeatureWarning
 
+from cablefem.compiled.hermite import CLAMP_SCALE, _add_second, _clamp, _second_kinematics
 from cablefem.loads import catalog
 
 # numba marks the catalog's tuple of functions "first-class", an experimental feature; literal_unroll
@@ -73,8 +74,6 @@ OUT = np.dtype([("f", "f8", (3,)), ("A", "f8", (3, 3)), ("B", "f8", (3, 3)), ("N
 #: first and last band position of an unknown (1 and N - 2 between two prescribed ends, 0 and N - 1
 #: between two free ones), and the vertices of the node loads (k,)
 Mesh = namedtuple("Mesh", "dofs position phi dphi dx rphi rdphi rdx mass kl ku lo hi nodes")
-#: the columns of ``Points.clamp``
-CLAMP_SCALE, CLAMP_LOCAL, CLAMP_ROWS = 3, 4, 5
 #: the seabed at the full points: a plane (nx, ny, nz, offset), or an empty plane and the
 #: projection's gap (nel, nq), normal, its gradient (nel, nq, 3) and the normal's (nel, nq, 3, 3)
 Bed = namedtuple("Bed", "plane gap normal grad_gap dnormal")
@@ -235,25 +234,6 @@ def _kinematics(ctx, mesh, X, V, Acc, e, g):
 
 
 @njit(cache=True, _nrt=False)
-def _second_kinematics(ctx, out, mesh, ddphi, X, e, g):
-    """r'' at full point g of element e (a load reads it: bending on Hermite elements), and the flux,
-    the moment and their blocks it adds to zeroed."""
-    ddr = ctx.ddr
-    ddr[:] = 0.0
-    for l in range(mesh.dofs.shape[1]):
-        i = _index(mesh.dofs[e, l])
-        for a in range(3):
-            ddr[a] += ddphi[l, e, g] * X[i, a]
-    out.N[:] = 0.0
-    out.Q[:] = 0.0
-    if ctx.jac:
-        out.D[:, :] = 0.0
-        out.E[:, :] = 0.0
-        out.F[:, :] = 0.0
-        out.G[:, :] = 0.0
-
-
-@njit(cache=True, _nrt=False)
 def _seabed(ctx, bed, e, g):
     """The seabed's projection at full point g of element e: computed on a plane, read otherwise
     (a point on a flat part of a mesh or grid has no normal gradient: ``curved`` is off)."""
@@ -355,51 +335,6 @@ def _add_full(Re, Ke, mesh, out, ctx, e, g, jac):
                     for b in range(3):
                         Ke[l, a, mm, b] += c_v * out.A[a, b] + c_d * out.B[a, b]
                     Ke[l, a, mm, a] += c_v * a_x * m
-
-
-@njit(cache=True, _nrt=False)
-def _add_second(Re, Ke, mesh, ddphi, out, e, g, jac):
-    """A full point's flux N and moment Q against phi', phi'' and their blocks D, E, F, G into the
-    element's rows and matrix (a Hermite line with bending)."""
-    w = mesh.dx[e, g]
-    nloc = mesh.dofs.shape[1]
-    for l in range(nloc):
-        d_l, s_l = w * mesh.dphi[l, e, g], w * ddphi[l, e, g]
-        for a in range(3):
-            Re[l, a] += d_l * out.N[a] + s_l * out.Q[a]
-        if jac:
-            for mm in range(nloc):
-                d_m, s_m = mesh.dphi[mm, e, g], ddphi[mm, e, g]
-                for a in range(3):
-                    for b in range(3):
-                        Ke[l, a, mm, b] += (d_l * (out.D[a, b] * d_m + out.E[a, b] * s_m)
-                                            + s_l * (out.F[a, b] * d_m + out.G[a, b] * s_m))
-
-
-@njit(cache=True, _nrt=False)
-def _clamp(Re, Ke, mesh, clamp, X, e, end, jac):
-    """A clamped end's tangent row in its element's rows and matrix: d (d . R) + k (I - d d^T) X_t
-    and d d^T K_t + k (I - d d^T) on its diagonal block (``cablefem.fem.clamp``)."""
-    d0, d1, d2, k = clamp[end, 0], clamp[end, 1], clamp[end, 2], clamp[end, CLAMP_SCALE]
-    d = (d0, d1, d2)
-    l = int(clamp[end, CLAMP_LOCAL])
-    i = _index(mesh.dofs[e, l])
-    along = d0 * Re[l, 0] + d1 * Re[l, 1] + d2 * Re[l, 2]
-    x_along = d0 * X[i, 0] + d1 * X[i, 1] + d2 * X[i, 2]
-    for a in range(3):
-        clamp[end, CLAMP_ROWS + a] = Re[l, a]
-        Re[l, a] = d[a] * along + k * (X[i, a] - d[a] * x_along)
-    if not jac:
-        return
-    nloc = mesh.dofs.shape[1]
-    for mm in range(nloc):
-        for b in range(3):
-            along = d0 * Ke[l, 0, mm, b] + d1 * Ke[l, 1, mm, b] + d2 * Ke[l, 2, mm, b]
-            for a in range(3):
-                Ke[l, a, mm, b] = d[a] * along
-    for a in range(3):
-        for b in range(3):
-            Ke[l, a, l, b] += k * ((1.0 if a == b else 0.0) - d[a] * d[b])
 
 
 @njit(cache=True, _nrt=False)

@@ -380,7 +380,7 @@ class Integrator:
         if not system.clamps:
             return np.zeros((2, 3))
         if self.fused is not None:
-            from cablefem.compiled.kernels import CLAMP_ROWS
+            from cablefem.compiled.hermite import CLAMP_ROWS
 
             return clamp.reaction_moments(system, self.X, self.fused.points.clamp[:, CLAMP_ROWS:])
         state = system.state(self.X, self.V, self.A, self.t)

@@ -32,7 +32,7 @@ import scipy.sparse as sp
 from skfem import Basis, ElementLineP1, ElementLineP2, ElementLinePp, ElementVector, MeshLine
 from skfem.quadrature import get_quadrature_line
 
-from cablefem.fem.hermite import LOCAL, ElementLineHermiteLocal, hermite_basis
+from cablefem.fem.hermite import LOCAL, ElementLineHermiteLocal, hermite_basis, hermite_tangents, lobatto_line
 
 
 def scalar_element(order):
@@ -69,17 +69,6 @@ def gauss_line(points):
     """Gauss-Legendre rule of ``points`` points on the reference element [0, 1]: (X (1, n), W (n,))."""
     x, w = _legendre(points)
     return 0.5 * (x + 1.0)[None, :], 0.5 * w
-
-
-def lobatto_line():
-    """Simpson's rule, the 3-point Gauss-Lobatto rule on [0, 1]: (X (1, 3), W (3,)), the axial term
-    of a C1 cubic Hermite line. Its points hold the strain at the n + 1 vertices (shared by two
-    elements, where r' is continuous) and the n midpoints: 2n + 1 conditions on the 2n + 2 axial
-    unknowns, one per mode but a rigid motion. Three Gauss points per element (3n) lock the
-    inextensible elastica (tip error 4e-5 at 16 elements and EA L^2/EI = 1e8 against 2e-6 at
-    1e6, verification/bending); two (2n) leave one mode of zero axial energy (every vertex's
-    |r'| shifted alike, the strain vanishing at both Gauss points), singular on a straight line."""
-    return np.array([[0.0, 0.5, 1.0]]), np.array([1.0, 4.0, 1.0]) / 6.0
 
 
 class LineFEM:
@@ -121,7 +110,7 @@ class LineFEM:
         # (spurious strain of order (kappa h)^2, against T/EA ~ 1e-4); p points remove it. The
         # rule is built here: scikit-fem's line rules have two points at least, and P1's strain
         # is constant along an element, so its second point only doubled the axial work.
-        # Hermite: Simpson's rule (``lobatto_line``), see there
+        # Hermite: Simpson's rule (``hermite.lobatto_line``), see there
         reduced_rule = lobatto_line() if self.hermite else gauss_line(self.order)
         self.reduced = Rule(Basis(self.mesh, element, quadrature=reduced_rule), self.element_dofs, local)
         self.phi, self.dphi, self.dx, self.s = self.full.phi, self.full.dphi, self.full.dx, self.full.s
@@ -253,7 +242,7 @@ class LineFEM:
         if self.n_dofs == self.n_vertices:
             return X
         if self.hermite:
-            return self._hermite_tangents(X, positions)
+            return hermite_tangents(self, X, positions)
         target, _ = self.at_quadrature_positions(positions)
         vertex_part, _ = self.at_quadrature(X)
         interior = self.element_dofs[:, 2:]
@@ -261,28 +250,6 @@ class LineFEM:
         mass = np.einsum("ieq,jeq,eq->eij", phi_b, phi_b, self.dx)
         rhs = np.einsum("ieq,ceq,eq->eic", phi_b, target - vertex_part, self.dx)
         X[interior] = np.linalg.solve(mass, rhs)
-        return X
-
-    def _hermite_tangents(self, X, positions):
-        """X (N, 3) with its vertex positions given and its tangent rows the L2 projection of
-        ``positions`` onto the tangent basis functions (tridiagonal: each spans two elements)."""
-        from scipy.linalg import solve_banded
-
-        nv = self.n_vertices
-        target, _ = self.at_quadrature_positions(positions)
-        vertex_part, _ = self.at_quadrature(X)
-        phi_t, dx = self.phi[2:], self.dx  # the element's two tangent functions (2, nel, nq)
-        local = np.einsum("ieq,jeq,eq->eij", phi_t, phi_t, dx)
-        rhs_local = np.einsum("ieq,ceq,eq->eic", phi_t, target - vertex_part, dx)
-        band = np.zeros((3, nv))
-        band[1, :-1] += local[:, 0, 0]
-        band[1, 1:] += local[:, 1, 1]
-        band[0, 1:] = local[:, 0, 1]  # superdiagonal
-        band[2, :-1] = local[:, 1, 0]  # subdiagonal
-        rhs = np.zeros((nv, 3))
-        np.add.at(rhs, np.arange(nv - 1), rhs_local[:, 0])
-        np.add.at(rhs, np.arange(1, nv), rhs_local[:, 1])
-        X[nv:] = solve_banded((1, 1), band, rhs)
         return X
 
     def at_quadrature_positions(self, positions):
