@@ -14,7 +14,7 @@ stepping alone.
     python -m benchmarks.soil_cost [--duration T] [--repeats N] [--json FILE]
 
 Timings are of this machine and its load at the time; the ratio between the rows of one run is what
-to read.
+to read. The last measurement is in validation/rui2025/README.md ("Cost").
 """
 
 import argparse

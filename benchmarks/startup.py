@@ -25,6 +25,19 @@ checkout without ``__pycache__`` recompiles every cablefem module from source in
 
 ``python benchmarks/startup.py [--repeats N] [--compare DIR] [--no-compile]``: ``--compare`` runs
 the cablefem commands of another checkout too (e.g. a worktree of main), in the same rounds.
+
+Last measured (medians of 7 rounds, byte-compiled, numba's cache warm, the 2-core machine):
+
+- ``cablefem run`` of the snap case 2.17 s of wall against 0.145 s for the MoorDyn script: 15x,
+  not the <= 2x target. The import floor is above 2x MoorDyn: numpy, scipy.sparse, scikit-fem and
+  numba take 1.04 s together, 1.61 s with numba's target initialised. The run's own work is
+  ~0.08 s of CPU; its kernels load in 0.08-0.1 s, after numba's target initialisation
+  (0.23-0.26 s). scipy.optimize (for the catenary start's ``brentq``, with the scipy.spatial it
+  imports: 0.12-0.15 s of CPU) stays. The levers left are numba's kernels compiled ahead of time
+  and one process for many runs (the studies, ``cablefem sweep``).
+- ``cablefem static`` of the default scene 1.21 s of wall, not the <= 0.5 s target: python,
+  numpy, scipy.sparse and scikit-fem alone take 0.41-0.51 s on an idle machine (numpy 0.23 s); a
+  scene this small is solved on the numpy path, without loading compiled kernels.
 """
 
 import argparse

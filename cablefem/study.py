@@ -17,8 +17,7 @@ def start_line(scene, index=0, dt=None, integrator=None, **options):
     as ``run_scene`` starts it: the scene's integrator (or ``integrator``, a class or a registry name),
     its [solver] options, the step dt [s] (default: the scene's), ``options`` overriding any of them
     (``newton``, ``compiled``, ``lumped``, ``tolerance``, ...)."""
-    from cablefem.dynamics.registry import INTEGRATORS
-    from cablefem.dynamics.schemes import integrator_options
+    from cablefem.dynamics.registry import INTEGRATORS, integrator_options
     from cablefem.model.network import boundary_path
     from cablefem.fem.system import build_system
     from cablefem.statics.scene import start_states
@@ -27,7 +26,7 @@ def start_line(scene, index=0, dt=None, integrator=None, **options):
     systems = [build_system(scene, each) for each in scene.lines]
     states, _ = start_states(scene, systems=systems)
     cls = integrator if isinstance(integrator, type) else INTEGRATORS[integrator or scene.solver.integrator]
-    settings = {**integrator_options(scene.solver, cls.name), **options}
+    settings = {**integrator_options(scene.solver, cls), **options}
     return cls(systems[index], states[index], boundary_path(scene, line), dt=scene.solver.dt if dt is None else dt,
                **settings)
 

@@ -159,7 +159,7 @@ def test_clamped_tangent_holds_its_direction_and_its_magnitude_is_the_strain(rng
 
 
 def test_compiled_clamp_moment_is_the_numpy_reaction_after_a_step():
-    from cablefem.dynamics.schemes import BDF2
+    from cablefem.dynamics.bdf2 import BDF2
 
     system = cable_system(elements=10, assembly="kernel")
     X = solve_static(system).X
@@ -337,9 +337,8 @@ fairlead_tangent = [0.0, 0.0, 1.0]''')
 def test_a_bending_line_in_a_junction_network_runs_compiled_as_in_python():
     # benchmarks/crowfoot.toml with its upper line a cable of EI = 1e4 N m^2 on Hermite elements: the
     # junction's compiled steps take the Hermite string with the chain legs (one numba type)
-    from cablefem.dynamics.junctions import junction_steps
-    from cablefem.dynamics.registry import INTEGRATORS
-    from cablefem.dynamics.schemes import integrator_options
+    from cablefem.dynamics.group import junction_groups
+    from cablefem.dynamics.registry import INTEGRATORS, integrator_options
     from cablefem.fem.system import build_system
     from cablefem.model.network import anchor_path, boundary_path, dynamic_lines
     from cablefem.statics.scene import start_states
@@ -362,7 +361,7 @@ def test_a_bending_line_in_a_junction_network_runs_compiled_as_in_python():
             integrators = [INTEGRATORS[scene.solver.integrator](system, X0, boundary_path(scene, line), dt=0.05,
                                                                 anchor=anchor_path(scene, line), **options)
                            for system, line, X0 in zip(systems, scene.lines, states)]
-            steps = junction_steps(scene, integrators)
+            steps = junction_groups(scene, integrators)[0]
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
                 steps.march(0.05 * np.arange(1, 21))

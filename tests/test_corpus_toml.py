@@ -144,8 +144,6 @@ FRICTION_SOLVER = [
     toml_case("mu-huge", "friction.mu", {"mu = 0.3": "mu = 1e9"}),
     toml_case("mu-negative", "friction.mu: must be >= 0", {"mu = 0.3": "mu = -0.3"}),
     toml_case("integrator", "valid: bdf2 | generalized-alpha", {'integrator = "bdf2"': 'integrator = "rk4"'}),
-    toml_case("adaptive-gen-alpha", 'solver.adaptive: adaptive steps need integrator = "bdf2"',
-              {'integrator = "bdf2"': 'integrator = "generalized-alpha"\nadaptive = true'}),
     toml_case("adaptive-string", "expected true or false", {'integrator = "bdf2"': 'adaptive = "yes"'}),
     toml_case("dt-zero", "solver.dt: must be > 0", {"dt = 0.01": "dt = 0.0"}),
     toml_case("dt-tiny", "solver.dt", {"dt = 0.01": "dt = 1e-300"}),

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from cablefem.dynamics.schemes import BDF2
+from cablefem.dynamics.bdf2 import BDF2
 from cablefem.errors import InputError
 from cablefem.geometry import Horizontal
 from cablefem.io.currents import current_profile_setting, read_current_profile

@@ -99,3 +99,19 @@ def test_no_module_getattr_outside_a_package_init():
              and any(isinstance(node, ast.FunctionDef) and node.name == "__getattr__"
                      for node in ast.parse(path.read_text()).body)]
     assert shims == []
+
+
+def test_statics_and_dynamics_do_not_know_which_face_they_run_on():
+    """One evaluator interface (cablefem.fem.evaluator): statics and dynamics import neither face's
+    evaluator class and test no object for being one; ``LineSystem.evaluator`` picks it."""
+    faces = {"NumpyEvaluator", "FusedEvaluator"}
+    named = []
+    for stage in ("statics", "dynamics"):
+        for path in (PACKAGE / stage).rglob("*.py"):
+            for node in ast.walk(ast.parse(path.read_text())):
+                if isinstance(node, ast.Name) and node.id in faces or (
+                        isinstance(node, ast.alias) and node.name in faces) or (
+                        isinstance(node, ast.Attribute) and node.attr in faces):
+                    named.append((module_name(path), getattr(node, "id", None) or getattr(node, "name", None)
+                                  or node.attr))
+    assert named == []

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from cablefem.dynamics import policy
-from cablefem.dynamics.schemes import GeneralizedAlpha
-from cablefem.dynamics.step_control import StepControl
+from cablefem.dynamics.generalized_alpha import GeneralizedAlpha
+from cablefem.runs.run import step_times
 from cablefem.model.network import boundary_path
 from cablefem.fem.system import build_system
 from cablefem.statics.scene import start_states
@@ -22,25 +22,26 @@ def integrator(scene, dt, compiled_steps, rho_inf, max_iterations=12):
     integ = GeneralizedAlpha(system, X0, boundary_path(scene, line), dt=dt, tolerance=1e-6,
                              max_iterations=max_iterations, rho_inf=rho_inf)
     if not compiled_steps:
-        integ.marcher = None  # the fused kernel per evaluation, Newton in Python
+        integ.stepper().packer = None  # the fused kernel per evaluation, Newton in Python
     return integ
 
 
 def both(scene, dt, duration, rho_inf, max_iterations=12):
     """(forces, X, V, statistics, attempts (h, converged)) of the compiled and the Python steps."""
-    times = StepControl(scene.solver, dt).times(0.0, duration)
+    times = step_times(0.0, duration, dt)
     runs = []
     for compiled_steps in (True, False):
         integ = integrator(scene, dt, compiled_steps, rho_inf, max_iterations)
-        assert (integ.marcher is not None) == compiled_steps
-        sizes, attempt = [], integ.attempt
+        assert (integ.stepper().packer is not None) == compiled_steps
+        group = integ.stepper()
+        sizes, attempt = [], group.attempt
 
         def recording(h, attempt=attempt, sizes=sizes):  # the Python ops' attempts (the deep halvings)
-            ok = attempt(h)
-            sizes.append((h, ok))
-            return ok
+            outcome = attempt(h)
+            sizes.append((h, outcome == policy.CONVERGED))
+            return outcome
 
-        integ.attempt = recording
+        group.attempt = recording
         forces = integ.march(times)
         assert integ.t == pytest.approx(duration, abs=1e-12)
         runs.append((forces, integ.X, integ.V, integ.statistics(), sizes))
@@ -90,20 +91,21 @@ def test_march_takes_a_steps_reactions_in_python_where_the_loop_could_not():
     """``policy.REACTIONS`` (the walk lost a point evaluating the end forces after a step): the
     step stays taken, its forces come from ``Integrator.reactions``, the loop goes on after it."""
     scene = flume_scene("flat", "dynamic", 12, 1, 1.0, 0.1)
-    times = StepControl(scene.solver, 0.1).times(0.0, 1.0)
+    times = step_times(0.0, 1.0, 0.1)
     expected = integrator(scene, 0.1, True, 0.5).march(times)
     integ = integrator(scene, 0.1, True, 0.5)
-    run, stops = integ.marcher.run, []
+    packer = integ.stepper().packer
+    run, stops = packer.run, []
 
-    def stopping(integ, times, ends, fractions, forces):  # the first step of every other call, then stop
+    def stopping(times, forces):  # the first step of every other call, then stop
         if len(times) % 2:
-            return run(integ, times, ends, fractions, forces)
-        run(integ, times[:1], ends[:1], fractions[:1], forces[:1])
+            return run(times, forces)
+        run(times[:1], forces[:1])
         forces[0] = np.nan
         stops.append(len(times))
         return policy.REACTIONS, 0, 0.0
 
-    integ.marcher.run = stopping
+    packer.run = stopping
     forces = integ.march(times)
     assert stops and np.all(np.isfinite(forces))
     assert np.max(np.abs(forces - expected)) <= 1e-9 * np.max(np.abs(expected))
@@ -125,11 +127,11 @@ def stop_scene(case):
         assert scene.friction is not None
     scene.solver = replace(scene.solver, integrator="generalized-alpha", rho_inf=0.7, newton="modified",
                            tolerance=1e-3, duration=duration)
-    return scene, dt, StepControl(scene.solver, dt).times(0.0, duration)
+    return scene, dt, step_times(0.0, duration, dt)
 
 
 def alpha_integrator(scene, dt):
-    from cablefem.dynamics.schemes import integrator_options
+    from cablefem.dynamics.registry import integrator_options
 
     line = scene.lines[0]
     system = build_system(scene, line)
@@ -161,8 +163,8 @@ def test_first_iteration_stop_keeps_the_residual_below_the_tolerance(monkeypatch
     def checked_finish(prob):
         if norms[0] == 1:  # one residual in this Newton: it stopped after its first iteration
             python_ops.evaluate(prob, False, False)  # the whole residual at the point, uncounted
-            prob.nfev -= 1
-            after_stops.append(norm(prob) / prob.tolerance)
+            prob.members[0].nfev -= 1
+            after_stops.append(norm(prob) / prob.members[0].tolerance)
         return finish(prob)
 
     def counted_restart(prob):  # every Newton of an attempt starts here
@@ -173,7 +175,7 @@ def test_first_iteration_stop_keeps_the_residual_below_the_tolerance(monkeypatch
     for compiled in (True, False):
         integ = alpha_integrator(scene, dt)
         if not compiled:
-            integ.marcher = None
+            integ.stepper().packer = None
             monkeypatch.setattr(python_ops, "norm", counted_norm)
             monkeypatch.setattr(python_ops, "finish", checked_finish)
             monkeypatch.setattr(python_ops, "restart", counted_restart)
@@ -194,27 +196,28 @@ def test_a_contraction_measured_on_one_path_is_not_used_on_the_other(monkeypatch
     loop gives up (the seabed walk lost a point) is redone in Python, whose factors may be those of
     an earlier such attempt, current by their coefficients. The contraction the first-iteration
     stop trusts was measured with the compiled factors: the Python attempt starts without one, and
-    the compiled steps after it too (``CompiledSteps.attempt``)."""
+    the compiled steps after it too (``Group.attempt``)."""
     from cablefem.dynamics import python_ops
 
     scene, dt, times = stop_scene("slow, frictionless")
     integ = alpha_integrator(scene, dt)
-    compiled_attempt, problem = integ.marcher.attempt, integ.marcher.problem
+    packer = integ.stepper().packer
+    compiled_attempt, pack = packer.attempt, packer.pack
     calls, lost_at = [0], {200, 400, 600}  # attempts handed to the Python ops
     read, entering, python = [], [], [False]
 
-    def sometimes_lost(integ_, h):
+    def sometimes_lost(h):
         calls[0] += 1
         if calls[0] in lost_at:
             python[0] = True
             return policy.LOST
-        return compiled_attempt(integ_, h)
+        return compiled_attempt(h)
 
-    def entered(integ_, *args):
+    def entered(*args):
         if python[0]:  # the first compiled attempt after a Python one
-            entering.append(integ_.contraction)
+            entering.append(integ.contraction)
             python[0] = False
-        return problem(integ_, *args)
+        return pack(*args)
 
     contraction = python_ops.contraction
 
@@ -222,8 +225,8 @@ def test_a_contraction_measured_on_one_path_is_not_used_on_the_other(monkeypatch
         read.append(contraction(prob))
         return read[-1]
 
-    monkeypatch.setattr(integ.marcher, "attempt", sometimes_lost)
-    monkeypatch.setattr(integ.marcher, "problem", entered)
+    monkeypatch.setattr(packer, "attempt", sometimes_lost)
+    monkeypatch.setattr(packer, "pack", entered)
     monkeypatch.setattr(python_ops, "contraction", reading)
     for t in times[:700]:
         integ.step(t - integ.t)

@@ -9,7 +9,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from cablefem.dynamics.schemes import GeneralizedAlpha
+from cablefem.dynamics.generalized_alpha import GeneralizedAlpha
 from cablefem.errors import InputError
 from cablefem.model.network import boundary_path
 from cablefem.fem.system import build_system

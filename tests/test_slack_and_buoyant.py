@@ -8,7 +8,7 @@ from moorpy.Catenary import catenary
 
 from cablefem import ConvergenceError, Line, LineType, Segment
 from cablefem.statics.catenary import elastic_catenary
-from cablefem.dynamics.schemes import BDF2
+from cablefem.dynamics.bdf2 import BDF2
 from cablefem.compiled.evaluator import FusedEvaluator
 from cablefem.geometry import Horizontal
 from cablefem.loads import State

@@ -235,7 +235,7 @@ def test_plastic_work_is_never_negative_and_the_path_s_energy_balance_closes(sma
 
 
 def test_a_run_dissipates_plastic_work_at_every_step_and_its_energy_balance_closes(tmp_path):
-    from cablefem.dynamics.schemes import BDF2
+    from cablefem.dynamics.bdf2 import BDF2
     from cablefem.model.network import boundary_path
     from cablefem.statics.scene import start_states
 
@@ -351,7 +351,7 @@ def test_compiled_steps_commit_the_history_of_the_converged_point_as_the_python_
     # a step that converges on its increment evaluates its end elements only for the reactions; a
     # line keeping history evaluates them all, so that every point commits the converged state's
     # (before: 645 iterations against 643, the plastic slip 4e-11 of its largest apart)
-    from cablefem.dynamics.schemes import BDF2
+    from cablefem.dynamics.bdf2 import BDF2
     from cablefem.model.network import boundary_path
     from cablefem.statics.scene import start_states
 
@@ -364,7 +364,7 @@ def test_compiled_steps_commit_the_history_of_the_converged_point_as_the_python_
         (X0,), _ = start_states(scene, systems=[system])
         integ = BDF2(system, X0, boundary_path(scene, scene.lines[0]), dt=0.005)
         if python:
-            integ.marcher = None  # the compiled kernel per evaluation, Newton in Python
+            integ.stepper().packer = None  # the compiled kernel per evaluation, Newton in Python
         integ.march(0.005 * np.arange(1, 401))
         runs.append((system.history["full"][0]["soil"].copy(), integ.X, integ.statistics()["newton_iterations"]))
     (compiled, X_compiled, its_compiled), (python, X_python, its_python) = runs

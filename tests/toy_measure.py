@@ -84,7 +84,7 @@ def _uniform(scene):
     from cablefem.model.network import boundary_path
     from cablefem.fem.system import build_system
     from cablefem.statics.scene import start_states
-    from cablefem.dynamics.schemes import BDF2
+    from cablefem.dynamics.bdf2 import BDF2
 
     reports, _, _ = solve_scene_static(scene)
     line = scene.lines[0]
@@ -107,7 +107,7 @@ def _uniform(scene):
             "uniform_energy_slope_error": slope, "uniform_energy_added_slope_error": added,
             "uniform_static_error": abs(reports[0].fairlead_tension / closed.fairlead_tension - 1.0),
             "uniform_faces_difference": float(np.abs(rows - reference).max() / np.abs(reference).max()),
-            "uniform_compiled_steps": integ.marcher is not None,
+            "uniform_compiled_steps": integ.stepper().packer is not None,
             "uniform_held_still_change": abs(moved / static - 1.0)}
 
 
@@ -163,7 +163,7 @@ def _cycle(scene, iterations, compiled):
     from cablefem.model.network import boundary_path
     from cablefem.fem.system import build_system
     from cablefem.statics.scene import start_states
-    from cablefem.dynamics.schemes import BDF2
+    from cablefem.dynamics.bdf2 import BDF2
 
     line = scene.lines[0]
     system = build_system(scene, line)
@@ -171,7 +171,7 @@ def _cycle(scene, iterations, compiled):
     integ = BDF2(system, X0, boundary_path(scene, line), dt=1.0, tolerance=1e-10, max_iterations=iterations,
                  newton="full")
     if not compiled:
-        integ.marcher = None
+        integ.stepper().packer = None
     fem = system.fem
     weights = fem.full.dx  # (nel, nq)
     k, yield_force = 1e6, 50.0

@@ -17,6 +17,7 @@ from scipy.linalg import lapack
 
 from cablefem.compiled import kernels
 from cablefem.compiled.hermite import CLAMP_LOCAL
+from cablefem.fem.evaluator import Evaluator
 from cablefem.geometry import Plane
 from cablefem.loads import catalog
 
@@ -86,12 +87,16 @@ def band_order(fem, dofs):
     return order
 
 
-class FusedEvaluator:
-    """Compiled residual and banded tangent of one ``LineSystem`` (see the module docstring)."""
+class FusedEvaluator(Evaluator):
+    """Compiled residual and banded tangent of one ``LineSystem`` (see the module docstring), behind
+    the evaluator interface of ``cablefem.fem.evaluator``."""
+
+    compiled = True
+    full_newton_pays = True  # a compiled tangent costs about a residual, its banded LU a few microseconds
 
     def __init__(self, system, mass):
+        super().__init__(system)
         fem = system.fem
-        self.system = system
         dofs = fem.element_dofs.astype(np.int64)
         order = band_order(fem, dofs)
         position = np.empty(fem.n_dofs, dtype=np.int64)
@@ -150,16 +155,16 @@ class FusedEvaluator:
                            np.ascontiguousarray(proj.gap_gradient.reshape(shape + (3,))),
                            np.ascontiguousarray(proj.direction_gradient.reshape(shape + (3, 3))))
 
-    def evaluate(self, X, V, A, v_x, a_x, jacobian=True, stick=False):
-        """Rows M A + G (N, 3) and, with ``jacobian``, the banded K + a_x M (LAPACK layout); with
-        ``stick``, the loads on the branches the hold records hold. The branch state and the trial
-        history of every point go to ``self.points``."""
+    def evaluate(self, X, V, A, v_x, a_x, jacobian=True, held=False, t=0.0):
+        """Rows M A + G (N, 3) and, with ``jacobian``, the banded K + v_x C + a_x M (LAPACK layout);
+        with ``held``, the loads on the branches the hold records hold. The branch state and the
+        trial history of every point go to ``self.points``."""
         rows = np.zeros((self.system.fem.n_dofs, 3))
         # Fortran order, as LAPACK and the compiled steps hold it (one compiled kernel for both;
         # the unused band is 2 x 2, since numba would type a 1 x 1 array as C-ordered)
         band = np.zeros((2 * self.kl + self.ku + 1, self.n) if jacobian else (2, 2), order="F")
         kernels.assemble(self.mesh, self.bed(X), self.points, self.work, (X, V, A), (float(v_x), float(a_x)),
-                         bool(jacobian), bool(stick), rows, band, self.elements)
+                         bool(jacobian), bool(held), rows, band, self.elements)
         if self.mesh.nodes.size:
             kernels.assemble_nodes(self.mesh, self.points, self.work, (X, V, A), (float(v_x), float(a_x)),
                                    bool(jacobian), rows, band)
@@ -190,6 +195,11 @@ class FusedEvaluator:
         """Hold no branch."""
         self.points.full_hold[...] = 0
         self.points.reduced_hold[...] = 0
+
+    def mass_factors(self, X, V, A, tangent):
+        """Factors of the free rows' mass at a state: the a_x = 1 tangent less the a_x = 0 one, the
+        clamps' constraint added back (``add_constraints``)."""
+        return self.factorize(self.add_constraints(tangent - self.evaluate(X, V, A, 0.0, 0.0)[1]))
 
     def factorize(self, band, scale=1.0):
         """LU factors of scale x band (dgbtrf); None if singular."""

@@ -1,41 +1,57 @@
-"""The Python side of the compiled steps (``cablefem.compiled.steps``): a ``Marcher`` packs a ``BDF2`` or
-``GeneralizedAlpha`` integrator, its scheme (``CompiledSteps.compiled_scheme``), its compiled kernel
-and its seabed into the ``Problem`` the compiled policy runs on, and hands the results back."""
+"""The Python side of the compiled steps (``cablefem.compiled.steps``): a ``Packer`` packs a ``Group`` of
+strings (``cablefem.dynamics.group``: their integrators, schemes, compiled kernels, seabed and
+junctions) into the compiled ``Group`` the policy runs on, and hands the results back."""
 
 import numpy as np
 
 from cablefem.compiled import kernels
 from cablefem.compiled.seabed import GRID, PLANE, TRIANGULATED, Projector
-from cablefem.compiled.steps import BDF2, CLOCK, FACTORS, FRACTIONS, SCHEME, STEPS, Problem, attempt
+from cablefem.compiled.steps import FRACTIONS, Group, Problem, bound
+
+#: adaptive steps in the compiled loop end on this many even splits of an output interval (smaller
+#: ones go on in Python, where the ends are placed anywhere)
+ADAPTIVE_PARTS = 64
 from cablefem.dynamics import policy
 from cablefem.geometry import DepthGrid, TriangulatedSurface
 from cablefem.geometry import _walk_jit as walk
 
 
-class Marcher:
-    """Runs an integrator's steps through the compiled policy (``STEPS``); built by ``for_integrator``."""
+def projector_kind(integ):
+    """How the compiled steps project ``integ``'s seabed (PLANE, GRID, TRIANGULATED), or None where
+    they cannot (the numpy evaluator; a seabed without a compiled projection)."""
+    ev, seabed = integ.evaluator, integ.system.seabed
+    if not ev.compiled:
+        return None
+    if ev.plane.size:
+        return PLANE
+    if isinstance(seabed, DepthGrid) and seabed.compiled:
+        return GRID
+    if isinstance(seabed, TriangulatedSurface) and seabed.compiled:
+        return TRIANGULATED
+    return None
 
-    def __init__(self, integ, kind):
-        fem, ev = integ.fem, integ.fused
-        self.scheme = np.array([integ.compiled_scheme()], dtype=SCHEME)
-        self.seabed, self.kind = integ.system.seabed, kind
+
+class _String:
+    """What one string keeps between compiled runs: its arrays and scratch, its seabed's projector kind."""
+
+    def __init__(self, integ, kind, ends, interior, increment_scale):
+        fem, ev = integ.fem, integ.evaluator
+        self.integ, self.kind, self.ev = integ, kind, ev
+        self.seabed = integ.system.seabed
         nel, nq = ev.full.dx.shape
         if kind == PLANE:  # the kernel computes the gap itself
             self.bed = kernels.Bed(ev.plane, *ev.unused)
-        else:  # written by ``_project`` each evaluation
+        else:  # written by ``project`` each evaluation
             self.bed = kernels.Bed(ev.plane, np.zeros((nel, nq)), np.zeros((nel, nq, 3)), np.zeros((nel, nq, 3)),
                                    np.zeros((nel, nq, 3, 3)))
-        self.ev = ev
-        ends = np.unique(np.flatnonzero(np.isin(ev.mesh.dofs, fem.end_dofs).any(axis=1)))
-        self.end_elements = ends.astype(np.int64)
+        self.end_elements = np.unique(np.flatnonzero(np.isin(ev.mesh.dofs, fem.end_dofs).any(axis=1))).astype(np.int64)
         self.points = nel * nq
         self.rule = fem.full  # positions at its quadrature points: the walk's start
-        self.settings = integ.make_settings(FRACTIONS)  # read at construction
         n, N = ev.n, fem.n_dofs
         size = n * (2 * ev.kl + ev.ku + 1)
         self.vectors = tuple(np.zeros(n) for _ in range(3))  # rhs, step, original
         self.bands = (np.zeros(size), np.zeros(size), np.zeros(n, dtype=np.int64), np.empty(ev.kl + 1))
-        self.rows = tuple(np.zeros((N, 3)) for _ in range(8))  # X1, V1, A1, X_alpha, guess, x_hist, v_hist, base
+        self.rows = tuple(np.zeros((N, 3)) for _ in range(6))  # X1, Xe, Ve, Ae, guess, base
         pts = ev.points
         self.keeps = ((kernels.byte_view(ev.base_full), kernels.byte_view(pts.full_state)),
                       (kernels.byte_view(ev.base_reduced), kernels.byte_view(pts.reduced_state)))
@@ -43,31 +59,16 @@ class Marcher:
         self.commits = tuple((kernels.byte_view(old), kernels.byte_view(new)) if rule in kept else (nothing, nothing)
                              for rule, (old, new) in (("full", (pts.full_old, pts.full_new)),
                                                       ("reduced", (pts.reduced_old, pts.reduced_new))))
-        self.factors = np.full(1, np.nan, dtype=FACTORS)  # kept between runs
-
-    @classmethod
-    def for_integrator(cls, integ):
-        """A marcher for ``integ`` (a ``CompiledSteps``) when it evaluates with the compiled kernel on a
-        plane, a depth grid or a triangulated surface with compiled projections; None otherwise (the
-        Python ops apply)."""
-        ev, seabed = integ.fused, integ.system.seabed
-        if ev is None:
-            return None
-        if ev.plane.size:
-            return cls(integ, PLANE)
-        if isinstance(seabed, DepthGrid) and seabed.compiled:
-            return cls(integ, GRID)
-        if isinstance(seabed, TriangulatedSurface) and seabed.compiled:
-            return cls(integ, TRIANGULATED)
-        return None
-
-    def ends(self, integ, times):
-        """The anchor and fairlead at ``times`` (m,) and where the loop may split each step (halved
-        on failure), (m, 2, 3) and (m, FRACTIONS - 1, 2, 3)."""
-        starts = np.append(integ.t, times[:-1])
-        split = np.arange(1, FRACTIONS) / FRACTIONS
-        fractions = integ.end_positions((starts[:, None] + split * (times - starts)[:, None]).ravel())
-        return integ.end_positions(times), fractions.reshape(len(times), FRACTIONS - 1, 2, 3)
+        self.factors = np.full(1, np.nan, dtype=policy.FACTORS)  # kept between runs
+        self.interior = np.asarray(interior, dtype=np.int64)
+        self.increment_scale = float(increment_scale)
+        self.EA = np.ascontiguousarray(integ.system.props["EA"], dtype=float)
+        # its junction ends: (band row, junction, node), -1 where unused; Z, S, yE of the condensation
+        self.junction_ends = np.full((2, 3), -1, dtype=np.int64)
+        order = list(ev.free_order)
+        for s, (_, _, j, dof) in enumerate(ends):
+            self.junction_ends[s] = (order.index(dof), j, dof)
+        self.junction = (np.zeros((n, 6)), np.zeros((6, 6)), np.zeros(6))
 
     def projector(self, X):
         """The seabed's ``Projector`` for state X (N, 3): its arrays, the walk's warm start from the
@@ -83,30 +84,29 @@ class Marcher:
         result = walk.Result(np.zeros(n, dtype=np.int64), np.zeros((3, n)), np.zeros((walk.OUTPUTS, n)))
         return Projector(self.kind, *grid, surface, typical, start, result, np.zeros((3, n)))
 
-    def problem(self, integ, ends, fractions):
-        """The ``Problem`` of ``integ``'s current state, the anchor and fairlead at the ends of the
+    def problem(self, settings, ends, fractions):
+        """The ``Problem`` of the integrator's current state, the anchor and fairlead at the ends of the
         steps to come (m, 2, 3) and at their splits (m, FRACTIONS - 1, 2, 3)."""
-        memory = integ.memory()  # BDF2's step before; generalised-alpha has none
-        h_before, Xp, Vp = (0.0, integ.X, integ.V) if memory is None else memory
-        state = tuple(np.array(x, dtype=float) for x in (integ.X, integ.V, integ.A, Xp, Vp, integ.X))
-        clock = np.zeros(1, CLOCK)
-        clock[0] = (integ.t, h_before, integ.last_h or 0.0, 0.0, np.nan, np.nan, np.nan, np.nan, np.nan)
+        integ, ev, fem = self.integ, self.ev, self.integ.fem
+        clock = integ.clock.copy()
+        clock["t"], clock["last_h"], clock["stopped"], clock["residual"] = integ.t, integ.last_h or 0.0, 0.0, np.nan
         self.factors["auto_left"] = integ.full_steps_left  # "auto" Newton's state, shared with the Python ops
         self.factors["contraction"] = integ.contraction
-        ev, fem = self.ev, integ.fem
-        return Problem(self.settings, ev.mesh, self.bed, ev.points, ev.work, self.projector(integ.X),
-                       fem.free_dofs.astype(np.int64), ev.free_order, ev.elements, self.end_elements,
-                       int(fem.anchor_dof), int(fem.fairlead_dof), integ.scale, *state, np.zeros_like(integ.X),
-                       *self.rows, *self.vectors, *self.bands, ev.base_full, ev.base_reduced, self.keeps,
-                       self.commits, clock, self.factors, self.scheme, np.zeros(len(policy.COUNTERS), dtype=np.int64),
-                       np.ascontiguousarray(ends, dtype=float), np.ascontiguousarray(fractions, dtype=float),
-                       np.zeros((2, 3)))
+        state = tuple(np.array(x, dtype=float) for x in (integ.X, integ.V, integ.A, integ.memory, integ.X))
+        return Problem(settings, ev.mesh, self.bed, ev.points, ev.work, self.projector(integ.X),
+                       fem.free_dofs.astype(np.int64), self.interior, ev.free_order, ev.elements, self.end_elements,
+                       int(fem.anchor_dof), int(fem.fairlead_dof), integ.scale, self.increment_scale, self.EA, *state,
+                       np.zeros_like(integ.X), *self.rows, *self.vectors, *self.bands, ev.base_full,
+                       ev.base_reduced, self.keeps, self.commits, clock, self.factors, integ.parameters,
+                       np.zeros(len(policy.COUNTERS), dtype=np.int64), np.ascontiguousarray(ends, dtype=float),
+                       np.ascontiguousarray(fractions, dtype=float), np.zeros((2, 3)), self.junction_ends,
+                       *self.junction)
 
-    def finish(self, integ, prob, count_steps=True):
-        """Hand the run's results back to ``integ``: counters, "auto"'s state, the seabed walk's
+    def finish(self, prob):
+        """Hand the run's results back to the integrator: counters, "auto"'s state, the seabed walk's
         last call and, if a step was taken, the state (generalised-alpha's rows are those of the
         balance at t_{n+1-alpha_f}: its reactions are evaluated again at the state)."""
-        counters, clock = prob.counters, prob.clock[0]
+        integ, counters, clock = self.integ, prob.counters, prob.clock[0]
         integ.full_steps_left = float(self.factors["auto_left"][0])
         integ.contraction = float(self.factors["contraction"][0])
         if self.kind == TRIANGULATED and counters[policy.NFEV]:  # the walk's last call: the next one starts there
@@ -115,26 +115,94 @@ class Marcher:
         integ.last_residual = float(clock["residual"])
         if clock["t"] != integ.t:
             integ.X, integ.V, integ.A, integ.prediction = prob.X, prob.V, prob.A, prob.prediction
-            integ.residual_rows = prob.rows if self.scheme[0]["kind"] == BDF2 else None
-            integ.set_memory((float(clock["h_before"]), prob.Xp, prob.Vp))
+            integ.memory = prob.memory
+            integ.residual_rows = prob.rows if integ.scheme.rows_at_state else None
             integ.t, integ.last_h = float(clock["t"]), float(clock["last_h"])
+        integ.clock = prob.clock
+        # the last attempt's factors, as the Python face leaves them (``Integrator.begin``)
+        integ.factors = (float(clock["v_x"]), float(clock["a_x"]), float(clock["g_x"]))
+        integ.t_eval = float(clock["t_eval"])
 
-    def run(self, integ, times, ends, fractions, forces):
-        """Steps of ``integ`` to ``times`` (m,) with the ends at ``ends`` (m, 2, 3) and at the
-        splits ``fractions``, as ``policy.steps`` takes them, the line's forces into ``forces``
-        (m, 2, 3). Returns (status, k, the size of the attempt that stopped the loop)."""
-        prob = self.problem(integ, ends, fractions)
-        status, k = STEPS(prob, np.asarray(times, dtype=float), forces)
-        self.finish(integ, prob)
-        return status, k, float(prob.clock[0]["stopped"])
 
-    def attempt(self, integ, h):
-        """One attempt of size h of ``integ`` (``policy.attempt``), the ends at t + h; its
-        outcome (policy.CONVERGED, DIVERGED or LOST). The attempt's arithmetic is that of a run of
-        steps to the time t + h: its size is (t + h) - t."""
-        t1 = integ.t + h
-        prob = self.problem(integ, integ.ends_at(t1)[None], np.zeros((0, FRACTIONS - 1, 2, 3)))
-        prob.target[:] = prob.ends[0]
-        outcome = attempt(prob, t1 - integ.t)
-        self.finish(integ, prob)
+class Packer:
+    """Runs a group's steps through the compiled policy (``cablefem.compiled.steps.bound``); built by
+    ``for_group`` where every string can."""
+
+    def __init__(self, group, kinds):
+        members = group.members
+        self.group = group
+        # a line alone steps on its string's Problem, strings that meet at junctions on a Group
+        self.kind = "group" if group.junctions or len(members) > 1 else "line"
+        self.functions = bound(members[0].scheme)[self.kind]
+        self.strings = [_String(m, kind, ends, interior, scale) for m, kind, ends, interior, scale
+                        in zip(members, kinds, group.ends, group.interior, group.increment_scale)]
+        # the splits of a step where the ends are known: a fixed step halved DEPTH times, or the
+        # adaptive steps' grid in an output interval (``policy.advance``)
+        self.parts = ADAPTIVE_PARTS if members[0].adaptive else FRACTIONS
+        self.settings = members[0].make_settings(self.parts)  # read at construction
+        J = len(group.names)
+        leaders = [(k, members[k].fem.end_dofs[end]) for k, end in (group.junctions[name][0] for name in group.names)]
+        self.leaders = np.array(leaders, dtype=np.int64).reshape(-1, 2)
+        self.scratch = (np.zeros(3 * J), self.leaders, np.zeros((J, 3)), np.zeros((J, 3)), group.scale,
+                        np.zeros((3 * J, 3 * J)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros(6), np.zeros(6))
+        self.junctions = J
+
+    @classmethod
+    def for_group(cls, group):
+        """A packer for ``group`` when every string evaluates with the compiled kernel on a plane, a
+        depth grid or a triangulated surface with compiled projections, all with one scheme; None
+        otherwise (the Python ops apply)."""
+        kinds = [projector_kind(m) for m in group.members]
+        if None in kinds or len({m.scheme for m in group.members}) > 1:
+            return None
+        return cls(group, kinds)
+
+    def ends(self, times):
+        """Per string, the anchor and fairlead at ``times`` (m,) and where the loop may split each step
+        (halved on failure), (m, 2, 3) and (m, FRACTIONS - 1, 2, 3)."""
+        out = []
+        for string in self.strings:
+            integ = string.integ
+            starts = np.append(integ.t, times[:-1])
+            split = np.arange(1, self.parts) / self.parts
+            fractions = integ.end_positions((starts[:, None] + split * (times - starts)[:, None]).ravel())
+            out.append((integ.end_positions(times), fractions.reshape(len(times), self.parts - 1, 2, 3)))
+        return out
+
+    def pack(self, ends):
+        """What the compiled policy steps: a line's ``Problem``, or the ``Group`` of the strings'
+        current states; each string's ends (``ends``)."""
+        problems = tuple(string.problem(self.settings, *each) for string, each in zip(self.strings, ends))
+        if self.kind == "line":
+            return problems[0]
+        return Group(self.settings, problems, self.junctions, *self.scratch)
+
+    def finish(self, prob):
+        for string, each in zip(self.strings, (prob,) if self.kind == "line" else prob.strings):
+            string.finish(each)
+
+    def _first(self, prob):
+        return prob if self.kind == "line" else prob.strings[0]
+
+    def run(self, times, forces):
+        """Steps of the strings to ``times`` (m,) as ``policy.steps`` takes them, their forces into
+        ``forces`` (m, strings, 2, 3). Returns (status, k, the size of the attempt that stopped)."""
+        times = np.asarray(times, dtype=float)
+        prob = self.pack(self.ends(times))
+        status, k = self.functions["steps"](prob, times, forces)
+        self.finish(prob)
+        return status, k, float(self._first(prob).clock[0]["stopped"])
+
+    def attempt(self, h):
+        """One attempt of size h of the strings (``policy.attempt``), their ends at t + h; its outcome
+        (policy.CONVERGED, DIVERGED or LOST). The attempt's arithmetic is that of a run of steps to the
+        time t + h: its size is (t + h) - t."""
+        t = self.strings[0].integ.t
+        t1 = t + h
+        prob = self.pack([(string.integ.ends_at(t1)[None], np.zeros((0, self.parts - 1, 2, 3)))
+                          for string in self.strings])
+        for each in ((prob,) if self.kind == "line" else prob.strings):
+            each.target[:] = each.ends[0]
+        outcome = self.functions["attempt"](prob, t1 - t)
+        self.finish(prob)
         return outcome

@@ -1,66 +1,77 @@
-"""Time steps on the compiled kernel, many in one numba call: the policy's compiled ops.
+"""Time steps on the compiled kernel, many in one numba call: the Newton policy's compiled ops.
 
-``cablefem.dynamics.policy`` writes the Newton policy once (iterations, line search, branch corrections,
-retries, halving and growth); this module binds it to compiled ops and compiles it (``STEPS``).
-A step spent ~90 us per Newton iteration in Python around the compiled kernel (state updates,
-norms, LU calls through scipy, the boundary motion), more than the kernel itself on the small
-meshes of the coarse accuracy levels (verification/work_precision/README.md); here runs of
-steps go without returning to Python, and the numbers are those of the Python ops to round-off
-(``tests/test_march.py``, ``tests/test_march_alpha.py``).
+``cablefem.dynamics.policy`` writes the Newton policy once (iterations, line search, branch
+corrections, retries, halving and growth); ``bound(scheme)`` binds it to the compiled ops here,
+with a scheme's arithmetic (``cablefem.dynamics.scheme``: BDF2, generalised-alpha, or any scheme a
+file defines), and compiles it. The policy steps a ``Group`` of strings: a line alone is a group of
+one; the strings that meet at junction points are a group whose junctions are solved with them,
+each string condensed onto its junction ends (``cablefem.dynamics.group``). Runs of steps go without
+returning to Python, with the numbers of the Python ops (``cablefem.dynamics.python_ops``) to
+round-off (tests/test_march.py, tests/test_march_alpha.py, tests/test_junction_steps.py).
 
-The scheme is a run-time value of the ``Problem`` (``SCHEME``), one compiled policy for both:
-variable-step BDF2 (desire2023 Sec. 2.1.2: backward Euler to start, then y' ~ c0 y_{n+1} + c1 y_n
-+ c2 y_{n-1} on X and V) or generalised-alpha (``cablefem.dynamics.schemes.GeneralizedAlpha``: the loads
-at the alpha-weighted point of the Newmark update, the tangent scaled by g_x = 1 - alpha_f, the
-end forces evaluated at t_{n+1}). The banded LU is ``cablefem.compiled.banded`` (LAPACK's dgbtf2/dgbtrs
-written out for numba: numba cannot cache a ctypes call to LAPACK). The seabed is projected in the
-loop too (``cablefem.compiled.seabed``); where the walk cannot place a point, the loop stops and that
-step goes on in Python, whose search finds it.
+The banded LU is ``cablefem.compiled.banded`` (LAPACK's dgbtf2/dgbtrs written out: numba cannot cache
+a ctypes call to LAPACK). The seabed is projected in the loop too (``cablefem.compiled.seabed``);
+where the walk cannot place a point, the loop stops and that step goes on in Python, whose search
+finds it.
+
+Compile time. Every function here is compiled once per scheme (``bound``): they are rebound to the
+scheme's functions, under names that carry the scheme's name and a hash of its code, so that each
+binding has its own on-disk cache. The strings of a group have one numba type (the catalog's records
+and the seabed's projector are the same for every line; only sizes differ), so they come in a
+homogeneous tuple indexed by a loop counter (``numba.literal_unroll`` versions each loop body per
+element: minutes). No numba runtime (the small solves' scratch is in the group), and no literal
+arguments (each compiles a callee once more: ``policy.FLAG``).
 """
 
+import hashlib
+import sys
 from collections import namedtuple
+from types import FunctionType, ModuleType
 
 import numpy as np
 from numba import njit
-from numba import uint64 as _index  # an unsigned index: no wrap-around fix-up (cablefem.banded)
+from numba import uint64 as _index  # an unsigned index: no wrap-around fix-up (cablefem.compiled.banded)
 
 from cablefem.compiled import kernels
-from cablefem.dynamics import policy
 from cablefem.compiled.banded import lu_factor, lu_solve
 from cablefem.compiled.seabed import PLANE, project
+from cablefem.dynamics import policy
 
-#: a step of the compiled loop may be halved this many times (the fairlead's positions at the
+#: a step of the compiled loop may be halved this many times (the ends' positions at the
 #: 2**DEPTH - 1 points that split each step evenly are given); deeper, the Python ops go on
 DEPTH = 3
 FRACTIONS = 2 ** DEPTH
 
-#: the schemes (``SCHEME.kind``): BDF2, generalised-alpha
-BDF2, GENERALIZED_ALPHA = 0, 1
-#: a run's scheme (one record): its kind and generalised-alpha's alpha_m, alpha_f, gamma, beta
-SCHEME = np.dtype([("kind", "i8"), ("alpha_m", "f8"), ("alpha_f", "f8"), ("gamma", "f8"), ("beta", "f8")])
-#: a run's clock (one record): t [s], the step before (0 at the start), the last step (0 if none), the
-#: attempt that stopped the run, the last attempt's final relative residual, the attempt's factors
-#: (v_x, a_x, g_x) (``cablefem.dynamics.integrator``; BDF2's (c0, c0^2, 1)) and its size h [s]
-CLOCK = np.dtype([("t", "f8"), ("h_before", "f8"), ("last_h", "f8"), ("stopped", "f8"), ("residual", "f8"),
-                  ("v_x", "f8"), ("a_x", "f8"), ("g_x", "f8"), ("h", "f8")])
-#: what modified Newton's kept factors belong to (one record, kept between runs): the v_x of the
-#: factors (NaN: none; a_x and g_x follow from it) and "auto"'s full-Newton attempts still to run
-FACTORS = np.dtype([("v_x", "f8"), ("auto_left", "f8"), ("contraction", "f8")])
-#: everything the compiled ops read and write (``Marcher.problem``): the kernel's records; the state
-#: X, V, A, the step before's Xp, Vp, the last predictor and the rows M A + G (N, 3), updated in
-#: place; the trial X1, the velocity and acceleration V1, A1 where the loads are evaluated (BDF2: at
-#: X1; generalised-alpha: the alpha-weighted ones, at the positions X_alpha), the guess, BDF2's
-#: histories and Newton's base (N, 3); the increment, Newton's step and its own step when corrected
-#: (n,); the band and its LU (flat, LAPACK's column-major layout), pivots and multipliers; the
-#: base's branch state; the byte views (dst, src) that keep the branch state as the base's and
-#: commit the trial history; the clock (CLOCK), the factors' key (FACTORS) and the scheme (SCHEME);
-#: counters (policy.COUNTERS); the anchor and the fairlead at the end of each step (m, 2, 3) and at
-#: its splits (m, FRACTIONS - 1, 2, 3), and at the end of the attempt (2, 3) (an end that is not prescribed, ``Line.prescribed``, is an unknown like the others)
-Problem = namedtuple("Problem", "settings mesh bed pts work projector free_nodes free_order all_elements "
-                                "end_elements anchor_node fairlead_node scale "
-                                "X V A Xp Vp prediction rows X1 V1 A1 X_alpha guess x_hist v_hist base "
+#: one string (``cablefem.compiled.problem.Packer``): the policy's settings, the kernel's records (mesh, bed, pts,
+#: work) and the seabed's projector; its free nodes, those of them that are not junction ends
+#: (``interior``), the free unknowns in band order, all and the end elements, the anchor and fairlead
+#: nodes, its residual scale, the factor that puts its increments in the group's increment
+#: tolerance and the axial stiffness per element [N] (the error control's tension scale); the state X, V, A, the scheme's memory (MEMORY, N, 3), the last predictor and the rows
+#: M A + G (N, 3), updated in place; the trial X1, the evaluation point Xe, Ve, Ae, the guess and
+#: Newton's base (N, 3); the increment, Newton's
+#: step and its own step when corrected (n,); the band and its LU (flat, LAPACK's column-major
+#: layout), pivots and multipliers; the base's branch state; the byte views (dst, src) that keep the
+#: branch state as the base's and commit the trial history; the clock (``policy.CLOCK``), the kept
+#: factors' key (``policy.FACTORS``), the scheme's record, counters (``policy.COUNTERS``); the anchor
+#: and fairlead at the end of each step (m, 2, 3), at its splits (m, FRACTIONS - 1, 2, 3) and at the
+#: end of the attempt (2, 3); its junction ends, (2, 3) rows of (band row, junction, node), -1 where
+#: unused, the columns Z (n, 6) of K^-1 there, their end stiffness S (6, 6) and the string's own step
+#: there yE (6,)
+Problem = namedtuple("Problem", "settings mesh bed pts work projector free_nodes interior free_order all_elements "
+                                "end_elements anchor_node fairlead_node scale increment_scale EA "
+                                "X V A memory prediction rows X1 Xe Ve Ae guess base "
                                 "rhs step original band lu ipiv multipliers base_full base_reduced keeps commits "
-                                "clock factors scheme counters ends fractions target")
+                                "clock factors scheme counters ends fractions target junction_ends Z S yE")
+#: the strings stepped together: the policy's settings, the strings (a homogeneous tuple of
+#: ``Problem``), the number of junctions, their step dq (3 J,), the string and node whose predictor
+#: places each junction (J, 2) and that place (J, 3), the junctions' balance (J, 3), the group's
+#: residual scale, and scratch of the small solves: the junctions' system (3 J, 3 J), a string's end
+#: columns ZE and their inverse's work (6, 6), a column and a correction mu (6,)
+Group = namedtuple("Group", "settings strings junctions dq leaders at balance scale system ZE work column mu")
+
+#: the scheme's arithmetic, bound per scheme by ``bound`` (``cablefem.dynamics.scheme``)
+scheme_begin = scheme_point = scheme_accept = scheme_error = None
+ROWS_AT_STATE = True
 
 
 @njit(cache=True, _nrt=False)
@@ -91,319 +102,745 @@ def _largest(x):
     return size
 
 
-# ------------------------------------------------------------------------- the policy's ops
-@njit(cache=True, inline="always", _nrt=False)
-def _newmark(prob, i, a, h, g, b):
-    """Generalised-alpha's V and A at t + h of row i, component a, from X1 (``GeneralizedAlpha.newmark``)."""
-    X, V, A = prob.X, prob.V, prob.A
-    acceleration = (prob.X1[i, a] - X[i, a] - h * V[i, a]) / (b * h * h) - (0.5 / b - 1.0) * A[i, a]
-    return V[i, a] + h * ((1 - g) * A[i, a] + g * acceleration), acceleration
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def _solve_small(A, b, n):
+    """Solve A x = b (n x n, in place: x into b) by Gaussian elimination with partial pivoting;
+    False if A is singular."""
+    for c in range(n):
+        p = c
+        for r in range(c + 1, n):
+            if abs(A[r, c]) > abs(A[p, c]):
+                p = r
+        if A[p, c] == 0.0:
+            return False
+        if p != c:
+            for j in range(n):
+                A[c, j], A[p, j] = A[p, j], A[c, j]
+            b[c], b[p] = b[p], b[c]
+        for r in range(c + 1, n):
+            f = A[r, c] / A[c, c]
+            for j in range(c, n):
+                A[r, j] -= f * A[c, j]
+            b[r] -= f * b[c]
+    for c in range(n - 1, -1, -1):
+        total = b[c]
+        for j in range(c + 1, n):
+            total -= A[c, j] * b[j]
+        b[c] = total / A[c, c]
+    return True
 
 
-@njit(cache=True, _nrt=False)
-def _point(prob):
-    """V1 and A1 at the trial positions X1: BDF2's V = c0 X1 + x_hist, A = c0 V + v_hist; or
-    generalised-alpha's alpha-weighted point of the Newmark update (``GeneralizedAlpha.point``),
-    its positions into X_alpha."""
-    X1, V1, A1, clock = prob.X1, prob.V1, prob.A1, prob.clock[0]
-    if prob.scheme[0].kind == BDF2:
-        c0, x_hist, v_hist = clock.v_x, prob.x_hist, prob.v_hist
-        for i in range(X1.shape[0]):
-            for a in range(3):
-                V1[i, a] = c0 * X1[i, a] + x_hist[i, a]
-                A1[i, a] = c0 * V1[i, a] + v_hist[i, a]
-        return
-    scheme, X, V, A, Xa = prob.scheme[0], prob.X, prob.V, prob.A, prob.X_alpha
-    am, af = scheme.alpha_m, scheme.alpha_f
-    for i in range(X1.shape[0]):
-        for a in range(3):
-            velocity, acceleration = _newmark(prob, i, a, clock.h, scheme.gamma, scheme.beta)
-            Xa[i, a] = (1 - af) * X1[i, a] + af * X[i, a]
-            V1[i, a] = (1 - af) * velocity + af * V[i, a]
-            A1[i, a] = (1 - am) * acceleration + am * A[i, a]
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def _inverse(M, out, n, work, column):
+    """out = M^-1 (n x n) column by column (work, column: scratch); False if singular."""
+    for j in range(n):
+        for r in range(n):
+            for c in range(n):
+                work[r, c] = M[r, c]
+            column[r] = 1.0 if r == j else 0.0
+        if not _solve_small(work, column, n):
+            return False
+        for r in range(n):
+            out[r, j] = column[r]
+    return True
 
 
+# ---------------------------------------------------------------------------- one string
 @njit(cache=True, inline="always", _nrt=False)  # a call would copy the Problem's fields once more
-def _assemble_at(prob, X, V, A, tangent, held, elements):
-    """M A + G at (X, V, A) into ``prob.rows`` over ``elements`` and, with ``tangent``, its banded
-    tangent into ``prob.band`` (both zeroed first), the seabed projected first unless it is a plane.
-    Returns the projection's status (0, or the points the walk did not place)."""
-    if prob.projector.kind != PLANE:
-        lost = project(prob.projector, X, prob.mesh, prob.bed, tangent)
+def _assemble_at(p, X, V, A, tangent, held, elements, rows):
+    """M A + G at (X, V, A) into ``rows`` over ``elements`` (and the node loads) and,
+    with ``tangent``, its banded tangent into ``p.band`` (both zeroed first), the seabed projected
+    first unless it is a plane. Returns the projection's status (0, or the points the walk did not
+    place)."""
+    if p.projector.kind != PLANE:
+        lost = project(p.projector, X, p.mesh, p.bed, tangent)
         if lost != 0:
             return lost
-    factors = (prob.clock[0].v_x, prob.clock[0].a_x)
-    nb = prob.rhs.shape[0]
-    ld = 2 * prob.mesh.kl + prob.mesh.ku + 1
-    band2 = prob.band.reshape((nb, ld)).T  # the (ld, nb) column-major view the assembly writes
-    prob.rows[:] = 0.0
+    factors = (p.clock[0].v_x, p.clock[0].a_x)
+    nb = p.rhs.shape[0]
+    ld = 2 * p.mesh.kl + p.mesh.ku + 1
+    band2 = p.band.reshape((nb, ld)).T  # the (ld, nb) column-major view the assembly writes
+    rows[:] = 0.0
     if tangent:
         band2.T[:] = 0.0  # the contiguous (nb, ld) view: a memset, not a strided walk
-    kernels.assemble(prob.mesh, prob.bed, prob.pts, prob.work, (X, V, A), factors, tangent, held, prob.rows, band2,
-                     elements)
-    if prob.mesh.nodes.shape[0]:
-        kernels.assemble_nodes(prob.mesh, prob.pts, prob.work, (X, V, A), factors, tangent, prob.rows, band2)
+    kernels.assemble(p.mesh, p.bed, p.pts, p.work, (X, V, A), factors, tangent, held, rows, band2, elements)
+    if p.mesh.nodes.shape[0]:
+        kernels.assemble_nodes(p.mesh, p.pts, p.work, (X, V, A), factors, tangent, rows, band2)
     return 0
 
 
 @njit(cache=True, _nrt=False)
-def _assemble(prob, tangent, held, elements):
-    """The step residual at the trial point over ``elements`` (``_assemble_at``), counted."""
-    _point(prob)
-    X = prob.X1 if prob.scheme[0].kind == BDF2 else prob.X_alpha
-    lost = _assemble_at(prob, X, prob.V1, prob.A1, tangent, held, elements)
+def _assemble(p, tangent, held, elements):
+    """The step residual of string p at its trial point over ``elements`` (``_assemble_at``), counted."""
+    scheme_point(p.scheme, p.clock, p.X, p.V, p.A, p.memory, p.X1, p.Xe, p.Ve, p.Ae)
+    lost = _assemble_at(p, p.Xe, p.Ve, p.Ae, tangent, held, elements, p.rows)
     if lost == 0:
-        prob.counters[policy.NFEV] += 1
+        p.counters[policy.NFEV] += 1
     return lost
 
 
-@njit(cache=True, inline="always", _nrt=False)
-def evaluate(prob, tangent, held):
-    return _assemble(prob, tangent, held, prob.all_elements)
+@njit(cache=True, _nrt=False)
+def _increment(p, refactor):
+    """String p's Newton increment for its rows into ``p.step`` (band order): with ``refactor`` from
+    fresh LU factors of g_x times the band (counted; ``factors.v_x`` the v_x they belong to, NaN when
+    singular), else from those kept. Returns its largest entry (NaN: singular)."""
+    mesh, key, counters, rhs, clock = p.mesh, p.factors[0], p.counters, p.rhs, p.clock[0]
+    if refactor:
+        counters[policy.NJEV] += 1
+        if clock.g_x == 1.0:
+            _copy_flat(p.lu, p.band)
+        else:  # the tangent of the unknowns X1: g_x (K + a_x M), as ``Evaluator.factorize``
+            for j in range(p.lu.shape[0]):
+                p.lu[j] = clock.g_x * p.band[j]
+        key.v_x = np.nan
+        if not lu_factor(p.lu, p.ipiv.shape[0], mesh.kl, mesh.ku, p.ipiv, p.multipliers):
+            return np.nan
+        counters[policy.NLU] += 1
+        key.v_x = clock.v_x
+    for j in range(p.free_order.shape[0]):
+        i = _index(p.free_order[j])
+        for a in range(3):
+            rhs[3 * j + a] = -p.rows[i, a]
+    lu_solve(p.lu, rhs.shape[0], mesh.kl, mesh.ku, p.ipiv, rhs)
+    size = _largest(rhs)
+    _copy_flat(p.step, rhs)
+    return size
+
+
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def _columns(p, g):
+    """The columns Z of string p's K^-1 at its junction ends and their end stiffness S = Z_E^-1, from
+    its kept LU; False if singular."""
+    ends, Z, scratch = p.junction_ends, p.Z, p.original  # ``original`` is free before the corrections
+    m = np.int64(0)  # not literal: numba would compile ``_inverse`` once more for a literal 0
+    for s in range(2):
+        if ends[s, 0] >= 0:
+            m += 3
+    ZE, j = g.ZE, 0
+    for s in range(2):
+        row = ends[s, 0]
+        if row < 0:
+            continue
+        for c in range(3):
+            scratch[:] = 0.0
+            scratch[3 * row + c] = 1.0
+            lu_solve(p.lu, scratch.shape[0], p.mesh.kl, p.mesh.ku, p.ipiv, scratch)
+            for i in range(scratch.shape[0]):
+                Z[i, j] = scratch[i]
+            i = 0
+            for t in range(2):  # column j of ZE: Z's rows at the junction ends
+                if ends[t, 0] >= 0:
+                    for d in range(3):
+                        ZE[i, j] = scratch[3 * ends[t, 0] + d]
+                        i += 1
+            j += 1
+    return _inverse(ZE, p.S, m, g.work, g.column)
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def finish(prob):
+def _joined(p):
+    """Whether string p ends at a junction."""
+    return p.junction_ends[0, 0] >= 0 or p.junction_ends[1, 0] >= 0
+
+
+# ------------------------------------------------------------------ the policy's ops on one string
+# (a line alone: ``prob`` is its ``Problem``; inlined into the compiled policy)
+@njit(cache=True, inline="always", _nrt=False)
+def evaluate(p, tangent, held):
+    return _assemble(p, tangent, held, p.all_elements)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def finish(p):
     """The rows at the converged point: BDF2's reactions need only the two end elements; a line whose
     loads keep history (its commits not empty) evaluates them all, so that the history committed is
     the converged point's, as on the Python ops (``python_ops.finish``). Generalised-alpha's
     reactions evaluate at the state (``reactions``): without history it evaluates nothing."""
-    keeps = prob.commits[0][0].shape[0] > 0 or prob.commits[1][0].shape[0] > 0
-    if not keeps and prob.scheme[0].kind != BDF2:
+    keeps = p.commits[0][0].shape[0] > 0 or p.commits[1][0].shape[0] > 0
+    if not keeps and not ROWS_AT_STATE:
         return 0
-    return _assemble(prob, policy.FLAG[0], policy.FLAG[0], prob.all_elements if keeps else prob.end_elements)
+    return _assemble(p, policy.FLAG[0], policy.FLAG[0], p.all_elements if keeps else p.end_elements)
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def norm(prob):
+def _sum_squares(p):
+    """The sum of squares of the string's rows at its free nodes that are no junction end."""
     total = 0.0
-    for node in prob.free_nodes:
+    for node in p.interior:
         i = _index(node)
         for a in range(3):
-            total += prob.rows[i, a] * prob.rows[i, a]
-    return np.sqrt(total) / prob.scale
-
-
-@njit(cache=True, _nrt=False)
-def increment(prob, refactor):
-    """The Newton increment of the free unknowns for the rows into ``prob.rhs`` (band order): with
-    ``refactor`` from fresh LU factors of g_x times the band (counted; ``factors.v_x`` the v_x they
-    belong to, NaN when singular), else from those kept. Returns its largest entry (NaN: singular)."""
-    mesh, key, counters, rhs, clock = prob.mesh, prob.factors[0], prob.counters, prob.rhs, prob.clock[0]
-    if refactor:
-        counters[policy.NJEV] += 1
-        if clock.g_x == 1.0:
-            _copy_flat(prob.lu, prob.band)
-        else:  # the tangent of the unknowns X1: g_x (K + a_x M), as ``Integrator.factorize``
-            for j in range(prob.lu.shape[0]):
-                prob.lu[j] = clock.g_x * prob.band[j]
-        key.v_x = np.nan
-        if not lu_factor(prob.lu, prob.ipiv.shape[0], mesh.kl, mesh.ku, prob.ipiv, prob.multipliers):
-            return np.nan
-        counters[policy.NLU] += 1
-        key.v_x = clock.v_x
-    for j in range(prob.free_order.shape[0]):
-        i = _index(prob.free_order[j])
-        for a in range(3):
-            rhs[3 * j + a] = -prob.rows[i, a]
-    lu_solve(prob.lu, rhs.shape[0], mesh.kl, mesh.ku, prob.ipiv, rhs)
-    size = _largest(rhs)
-    _copy_flat(prob.step, rhs)
-    return size
+            total += p.rows[i, a] * p.rows[i, a]
+    return total
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def factors_current(prob):
-    return prob.factors[0].v_x == prob.clock[0].v_x
+def norm(p):
+    return np.sqrt(_sum_squares(p)) / p.scale
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def forget_factors(prob):
-    prob.factors[0].v_x = np.nan
+def increment(p, refactor):
+    return _increment(p, refactor)
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def take_step(prob, fraction):
+def factors_current(p):
+    return p.factors[0].v_x == p.clock[0].v_x
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def forget_factors(p):
+    p.factors[0].v_x = np.nan
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def take_step(p, fraction):
     """X1 = base + fraction step on the free unknowns (step in band order)."""
-    _copy_rows(prob.X1, prob.base)
-    for j in range(prob.free_order.shape[0]):
-        i = _index(prob.free_order[j])
+    _copy_rows(p.X1, p.base)
+    for j in range(p.free_order.shape[0]):
+        i = _index(p.free_order[j])
         for a in range(3):
-            prob.X1[i, a] += fraction * prob.step[3 * j + a]
+            p.X1[i, a] += fraction * p.step[3 * j + a]
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def set_base(prob):
+def set_base(p):
     """The trial becomes Newton's base, with its branch state (the holds compare against it)."""
-    _copy_rows(prob.base, prob.X1)
-    for dst, src in prob.keeps:
+    _copy_rows(p.base, p.X1)
+    for dst, src in p.keeps:
         _copy_flat(dst, src)
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def restore_base(prob):
-    _copy_rows(prob.X1, prob.base)
+def restore_base(p):
+    _copy_rows(p.X1, p.base)
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def hold(prob, again):
-    return kernels.hold_points(prob.pts, prob.base_full, prob.base_reduced, again)
+def hold(p, again):
+    return kernels.hold_points(p.pts, p.base_full, p.base_reduced, again)
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def save_original(prob):
-    _copy_flat(prob.original, prob.step)
+def save_original(p):
+    _copy_flat(p.original, p.step)
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def restore_original(prob):
-    _copy_flat(prob.step, prob.original)
-    return _largest(prob.original)
+def restore_original(p):
+    _copy_flat(p.step, p.original)
+    return _largest(p.original)
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def begin(prob, h):
-    """The scheme's factors for a step of h from the current state (BDF2: backward Euler to start,
-    then its histories x_hist = c1 X + c2 Xp, v_hist = c1 V + c2 Vp; generalised-alpha:
-    ``GeneralizedAlpha.begin``'s) and the Taylor predictor X + h V + h^2/2 A with the prescribed ends
-    in place (``prob.target``, set by ``place_ends``)."""
-    X, V, A, Xp, Vp, guess = prob.X, prob.V, prob.A, prob.Xp, prob.Vp, prob.guess
-    clock, scheme = prob.clock[0], prob.scheme[0]
-    clock.h = h
-    if scheme.kind == BDF2:
-        h_before = clock.h_before
-        start = h_before == 0.0
-        if start:
-            c0, c1, c2 = 1.0 / h, -1.0 / h, 0.0
-        else:
-            w = h / h_before
-            c0, c1, c2 = (1 + 2 * w) / ((1 + w) * h), -(1 + w) / h, w * w / ((1 + w) * h)
-        clock.v_x, clock.a_x, clock.g_x = c0, c0 * c0, 1.0
-        for i in range(X.shape[0]):
-            for a in range(3):
-                prob.x_hist[i, a] = c1 * X[i, a] + c2 * (X[i, a] if start else Xp[i, a])
-                prob.v_hist[i, a] = c1 * V[i, a] + c2 * (V[i, a] if start else Vp[i, a])
-                guess[i, a] = X[i, a] + h * V[i, a] + 0.5 * h * h * A[i, a]
-    else:
-        am, af, g, b = scheme.alpha_m, scheme.alpha_f, scheme.gamma, scheme.beta
-        clock.v_x, clock.a_x, clock.g_x = g / (b * h), (1 - am) / ((1 - af) * b * h * h), 1 - af
-        for i in range(X.shape[0]):
-            for a in range(3):
-                guess[i, a] = X[i, a] + h * V[i, a] + 0.5 * h * h * A[i, a]
+def begin(p, h):
+    """The step of h from the state (the scheme's ``begin``) with the prescribed ends in place
+    (``p.target``, set by ``place_ends``)."""
+    scheme_begin(p.scheme, p.clock, p.X, p.V, p.A, p.memory, p.guess, h)
     for a in range(3):
-        if prob.mesh.hi < X.shape[0] - 1:  # the fairlead end is prescribed
-            guess[prob.fairlead_node, a] = prob.target[1, a]
-        if prob.mesh.lo == 1:  # the anchor end
-            guess[prob.anchor_node, a] = prob.target[0, a]
+        if p.mesh.hi < p.X.shape[0] - 1:  # the fairlead end is prescribed
+            p.guess[p.fairlead_node, a] = p.target[1, a]
+        if p.mesh.lo == 1:  # the anchor end
+            p.guess[p.anchor_node, a] = p.target[0, a]
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def restart(prob):
-    _copy_rows(prob.X1, prob.guess)
+def restart(p):
+    _copy_rows(p.X1, p.guess)
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def accept(prob, h):
-    """The trial is the new state at t + h: BDF2's memory moves on; generalised-alpha's V and A are
-    the Newmark update's."""
-    _copy_rows(prob.prediction, prob.guess)
-    scheme = prob.scheme[0]
-    if scheme.kind == BDF2:
-        _copy_rows(prob.Xp, prob.X)
-        _copy_rows(prob.Vp, prob.V)
-        _copy_rows(prob.X, prob.X1)
-        _copy_rows(prob.V, prob.V1)
-        _copy_rows(prob.A, prob.A1)
-    else:
-        for i in range(prob.X.shape[0]):
-            for a in range(3):
-                prob.V[i, a], prob.A[i, a] = _newmark(prob, i, a, h, scheme.gamma, scheme.beta)
-                prob.X[i, a] = prob.X1[i, a]
-    for dst, src in prob.commits:
+def accept(p, h):
+    """The trial is the new state at t + h (the scheme's ``accept``), its history committed."""
+    _copy_rows(p.prediction, p.guess)
+    scheme_accept(p.scheme, p.clock, p.X, p.V, p.A, p.memory, p.X1)
+    for dst, src in p.commits:
         _copy_flat(dst, src)
-    clock = prob.clock[0]
+    clock = p.clock[0]
     clock.t, clock.h_before, clock.last_h = clock.t + h, h, h
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def auto_left(prob):
-    return prob.factors[0].auto_left
+def auto_left(p):
+    return p.factors[0].auto_left
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def set_auto_left(prob, value):
-    prob.factors[0].auto_left = value
+def set_auto_left(p, value):
+    p.factors[0].auto_left = value
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def contraction(prob):
-    return prob.factors[0].contraction
+def contraction(p):
+    return p.factors[0].contraction
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def set_contraction(prob, value):
-    prob.factors[0].contraction = value
+def set_contraction(p, value):
+    p.factors[0].contraction = value
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def count(prob, counter, amount):
-    prob.counters[counter] += amount
-    return prob.counters[counter]
+def count(p, counter, amount):
+    p.counters[counter] += amount
+    return p.counters[counter]
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def time(prob):
-    return prob.clock[0].t
+def time(p):
+    return p.clock[0].t
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def last_step(prob):
-    return prob.clock[0].last_h
+def last_step(p):
+    return p.clock[0].last_h
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def record_residual(prob, value):
-    prob.clock[0].residual = value
+def record_residual(p, value):
+    p.clock[0].residual = value
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def record_stop(prob, h):
-    prob.clock[0].stopped = h
+def record_stop(p, h):
+    p.clock[0].stopped = h
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def place_ends(prob, k, j, h):
-    """The ends where step k's attempt ending at its j-th split (of FRACTIONS) puts them."""
-    position = prob.ends[k] if j == FRACTIONS else prob.fractions[k, j - 1]
+def place_ends(p, k, j, h):
+    """The ends where step k's attempt ending at its j-th split puts them (the last split: the step's
+    end; ``p.fractions`` holds the others)."""
+    position = p.ends[k] if j == p.fractions.shape[1] + 1 else p.fractions[k, j - 1]
     for e in range(2):
         for a in range(3):
-            prob.target[e, a] = position[e, a]
+            p.target[e, a] = position[e, a]
     return True
 
 
+@njit(cache=True, _nrt=False)
+def _tension_error(p, X1, low):
+    """The local error of positions X1 against a solution of lower order ``low`` as a fraction of the
+    line's largest tension: EA |d(X1 - low)/ds| at the axial (reduced) points, over the largest
+    EA max(|dX1/ds| - 1, 0) (``Integrator.tension_error``)."""
+    mesh = p.mesh
+    largest, tension, stiffest = 0.0, 0.0, 0.0
+    for e in range(mesh.dofs.shape[0]):
+        EA = p.EA[e]
+        stiffest = max(stiffest, EA)
+        for g in range(mesh.rdphi.shape[2]):
+            d0 = d1 = d2 = r0 = r1 = r2 = 0.0
+            for l in range(mesh.dofs.shape[1]):
+                i, w = _index(mesh.dofs[e, l]), mesh.rdphi[l, e, g]
+                d0 += w * (X1[i, 0] - low[i, 0])
+                d1 += w * (X1[i, 1] - low[i, 1])
+                d2 += w * (X1[i, 2] - low[i, 2])
+                r0 += w * X1[i, 0]
+                r1 += w * X1[i, 1]
+                r2 += w * X1[i, 2]
+            largest = max(largest, EA * np.sqrt(d0 * d0 + d1 * d1 + d2 * d2))
+            tension = max(tension, EA * max(np.sqrt(r0 * r0 + r1 * r1 + r2 * r2) - 1.0, 0.0))
+    return largest / max(tension, 1e-12 * stiffest)
+
+
 @njit(cache=True, inline="always", _nrt=False)
-def reactions(prob, forces, k):
-    """The line's forces on fairlead and anchor into forces[k]: minus the rows there (less a point's
-    load riding on the end, ``kernels.subtract_node_loads``), which BDF2's
-    ``finish`` left at the state; generalised-alpha's balance holds at t_{n+1-alpha_f}, so its rows are
-    evaluated at the state over the end elements first, uncounted (as ``Integrator.reactions``).
-    Returns the projection's status (0, or the points the walk did not place)."""
-    if prob.scheme[0].kind != BDF2:
-        lost = _assemble_at(prob, prob.X, prob.V, prob.A, policy.FLAG[0], policy.FLAG[0], prob.end_elements)
+def error(p):
+    """The converged trial's local tension error (the scheme's ``error``, ``_tension_error``); -1 where
+    the scheme has none (``p.Xe``, free between evaluations, holds the solution of lower order)."""
+    if not scheme_error(p.scheme, p.clock, p.X, p.V, p.A, p.memory, p.X1, p.guess, p.Xe):
+        return -1.0
+    return _tension_error(p, p.X1, p.Xe)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def last_error(p):
+    return p.clock[0].error
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def record_error(p, value):
+    p.clock[0].error = value
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def proposal(p):
+    return p.clock[0].proposal
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def set_proposal(p, value):
+    p.clock[0].proposal = value
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def _forces(p, out):
+    """The string's forces on its fairlead and anchor into ``out`` (2, 3): minus its rows there (less a
+    point's load riding on the end, a free end's mass or a junction's clump:
+    ``kernels.subtract_node_loads``), which BDF2's ``finish`` left at the state; generalised-alpha's
+    balance holds at t_{n+1-alpha_f}, so its rows are evaluated at the state over the end elements
+    first, uncounted (as ``Integrator.reactions``). Returns the projection's status (0, or the
+    points the walk did not place)."""
+    if not ROWS_AT_STATE:
+        lost = _assemble_at(p, p.X, p.V, p.A, policy.FLAG[0], policy.FLAG[0], p.end_elements, p.rows)
         if lost != 0:
             return lost
     for a in range(3):
-        forces[k, 0, a] = -prob.rows[prob.fairlead_node, a]
-        forces[k, 1, a] = -prob.rows[prob.anchor_node, a]
-    if prob.mesh.nodes.shape[0]:  # a point riding on an end: the line's own force leaves its load out
-        kernels.subtract_node_loads(prob.mesh, prob.pts, prob.work, (prob.X, prob.V, prob.A), prob.fairlead_node,
-                                    forces[k, 0])
-        kernels.subtract_node_loads(prob.mesh, prob.pts, prob.work, (prob.X, prob.V, prob.A), prob.anchor_node,
-                                    forces[k, 1])
+        out[0, a] = -p.rows[p.fairlead_node, a]
+        out[1, a] = -p.rows[p.anchor_node, a]
+    if p.mesh.nodes.shape[0]:  # a point riding on an end: the line's own force leaves its load out
+        kernels.subtract_node_loads(p.mesh, p.pts, p.work, (p.X, p.V, p.A), p.fairlead_node, out[0])
+        kernels.subtract_node_loads(p.mesh, p.pts, p.work, (p.X, p.V, p.A), p.anchor_node, out[1])
     return 0
 
 
-# -------------------------------------------------------------------- the compiled policy
-#: the policy bound to these ops and compiled; ``policy.advance`` calls ``attempt`` through the ops
-_BOUND = policy.bind(__import__(__name__, fromlist=["_"]), compile=njit(cache=True), name="march")
-attempt, STEPS = _BOUND["attempt"], _BOUND["steps"]
+@njit(cache=True, inline="always", _nrt=False)
+def reactions(p, forces, k):
+    """The line's forces after step k into forces[k, 0] (``_forces``)."""
+    return _forces(p, forces[k, 0])
+
+
+# ------------------------------------------------------------------ the policy's ops on a group
+# (strings that meet at junctions: ``prob`` is a ``Group``; each op one compiled function, looping
+# over the strings with the string ops above)
+@njit(cache=True, _nrt=False)
+def group_evaluate(g, tangent, held):
+    for k in range(len(g.strings)):
+        lost = evaluate(g.strings[k], tangent, held)
+        if lost != 0:
+            return lost
+    return 0
+
+
+@njit(cache=True, _nrt=False)
+def group_finish(g):
+    for k in range(len(g.strings)):
+        lost = finish(g.strings[k])
+        if lost != 0:
+            return lost
+    return 0
+
+
+@njit(cache=True, _nrt=False)
+def group_norm(g):
+    """The group's relative residual: every string's rows at its free nodes that are no junction
+    end, and each junction's balance, the sum of its string ends' rows."""
+    total = 0.0
+    for k in range(len(g.strings)):
+        total += _sum_squares(g.strings[k])
+    balance = g.balance
+    balance[:] = 0.0
+    for k in range(len(g.strings)):
+        p = g.strings[k]
+        for s in range(2):
+            if p.junction_ends[s, 0] >= 0:
+                for a in range(3):
+                    balance[p.junction_ends[s, 1], a] += p.rows[p.junction_ends[s, 2], a]
+    for j in range(g.junctions):
+        for a in range(3):
+            total += balance[j, a] * balance[j, a]
+    return np.sqrt(total) / g.scale
+
+
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def _junction_step(g):
+    """g.dq (3 J) from sum over strings of S_k (dq_E - y_E,k) = 0 at every junction; False if singular."""
+    n = 3 * g.junctions
+    A, b = g.system, g.dq
+    A[:] = 0.0
+    b[:] = 0.0
+    for k in range(len(g.strings)):
+        p = g.strings[k]
+        ends, S, yE = p.junction_ends, p.S, p.yE
+        a = 0
+        for s in range(2):
+            if ends[s, 0] < 0:
+                continue
+            bb = 0
+            for t in range(2):
+                if ends[t, 0] < 0:
+                    continue
+                for c in range(3):
+                    for d in range(3):
+                        value = S[3 * a + c, 3 * bb + d]
+                        A[3 * ends[s, 1] + c, 3 * ends[t, 1] + d] += value
+                        b[3 * ends[s, 1] + c] += value * yE[3 * bb + d]
+                bb += 1
+            a += 1
+    return _solve_small(A, b, n)
+
+
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+def _condense(g):
+    """Every string's step y + Z S (dq_E - y_E) at its junctions' step dq; its largest scaled entry."""
+    size = 0.0
+    for k in range(len(g.strings)):
+        p = g.strings[k]
+        ends, mu = p.junction_ends, g.mu
+        m = 0
+        for s in range(2):
+            if ends[s, 0] >= 0:
+                for c in range(3):
+                    mu[m] = g.dq[3 * ends[s, 1] + c] - p.yE[m]
+                    m += 1
+        for i in range(p.step.shape[0]):
+            for j in range(m):
+                for l in range(m):
+                    p.step[i] += p.Z[i, j] * p.S[j, l] * mu[l]
+        size = max(size, _largest(p.step) * p.increment_scale)
+    return size
+
+
+@njit(cache=True, _nrt=False)
+def group_increment(g, refactor):
+    """Every string's Newton increment (``_increment``), each condensed onto its junction ends and
+    the junctions' step solved (``_junction_step``); the largest entry, each string's scaled to the
+    group's increment tolerance (NaN: singular)."""
+    for k in range(len(g.strings)):
+        p = g.strings[k]
+        largest = _increment(p, refactor)
+        if largest != largest:
+            return largest
+        if _joined(p):
+            if refactor and not _columns(p, g):
+                return np.nan
+            j = 0
+            for s in range(2):
+                if p.junction_ends[s, 0] >= 0:
+                    for c in range(3):
+                        p.yE[j] = p.step[3 * p.junction_ends[s, 0] + c]
+                        j += 1
+    if not _junction_step(g):
+        return np.nan
+    return _condense(g)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def group_factors_current(g):
+    return factors_current(g.strings[0])
+
+
+@njit(cache=True, _nrt=False)
+def group_forget_factors(g):
+    for k in range(len(g.strings)):
+        forget_factors(g.strings[k])
+
+
+@njit(cache=True, _nrt=False)
+def group_take_step(g, fraction):
+    for k in range(len(g.strings)):
+        take_step(g.strings[k], fraction)
+
+
+@njit(cache=True, _nrt=False)
+def group_set_base(g):
+    for k in range(len(g.strings)):
+        set_base(g.strings[k])
+
+
+@njit(cache=True, _nrt=False)
+def group_restore_base(g):
+    for k in range(len(g.strings)):
+        restore_base(g.strings[k])
+
+
+@njit(cache=True, _nrt=False)
+def group_hold(g, again):
+    held = False
+    for k in range(len(g.strings)):
+        held = hold(g.strings[k], again) or held
+    return held
+
+
+@njit(cache=True, _nrt=False)
+def group_save_original(g):
+    for k in range(len(g.strings)):
+        save_original(g.strings[k])
+
+
+@njit(cache=True, _nrt=False)
+def group_restore_original(g):
+    size = 0.0
+    for k in range(len(g.strings)):
+        p = g.strings[k]
+        largest = restore_original(p)
+        if largest != largest:
+            return largest
+        size = max(size, largest * p.increment_scale)
+    return size
+
+
+@njit(cache=True, _nrt=False)
+def group_begin(g, h):
+    """Every string's step of h; each junction where its leader string predicts it."""
+    for k in range(len(g.strings)):
+        begin(g.strings[k], h)
+    for j in range(g.junctions):
+        leader = g.strings[g.leaders[j, 0]]
+        for a in range(3):
+            g.at[j, a] = leader.guess[g.leaders[j, 1], a]
+    for k in range(len(g.strings)):
+        p = g.strings[k]
+        for s in range(2):
+            if p.junction_ends[s, 0] >= 0:
+                for a in range(3):
+                    p.guess[p.junction_ends[s, 2], a] = g.at[p.junction_ends[s, 1], a]
+
+
+@njit(cache=True, _nrt=False)
+def group_restart(g):
+    for k in range(len(g.strings)):
+        restart(g.strings[k])
+
+
+@njit(cache=True, _nrt=False)
+def group_accept(g, h):
+    for k in range(len(g.strings)):
+        accept(g.strings[k], h)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def group_auto_left(g):
+    return auto_left(g.strings[0])
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def group_set_auto_left(g, value):
+    set_auto_left(g.strings[0], value)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def group_contraction(g):
+    return contraction(g.strings[0])
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def group_set_contraction(g, value):
+    set_contraction(g.strings[0], value)
+
+
+@njit(cache=True, _nrt=False)
+def group_count(g, counter, amount):
+    for k in range(len(g.strings)):
+        count(g.strings[k], counter, amount)
+    return g.strings[0].counters[counter]
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def group_time(g):
+    return time(g.strings[0])
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def group_last_step(g):
+    return last_step(g.strings[0])
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def group_record_residual(g, value):
+    record_residual(g.strings[0], value)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def group_record_stop(g, h):
+    record_stop(g.strings[0], h)
+
+
+@njit(cache=True, _nrt=False)
+def group_place_ends(g, k, j, h):
+    for s in range(len(g.strings)):
+        place_ends(g.strings[s], k, j, h)
+    return True
+
+
+@njit(cache=True, _nrt=False)
+def group_error(g):
+    worst = -1.0
+    for k in range(len(g.strings)):
+        e = error(g.strings[k])
+        if e < 0.0:
+            return -1.0
+        worst = max(worst, e)
+    return worst
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def group_last_error(g):
+    return last_error(g.strings[0])
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def group_record_error(g, value):
+    record_error(g.strings[0], value)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def group_proposal(g):
+    return proposal(g.strings[0])
+
+
+@njit(cache=True, _nrt=False)
+def group_set_proposal(g, value):
+    for k in range(len(g.strings)):
+        set_proposal(g.strings[k], value)
+
+
+@njit(cache=True, _nrt=False)
+def group_reactions(g, forces, k):
+    """Every string's forces after step k into forces[k, string] (``_forces``)."""
+    for s in range(len(g.strings)):
+        lost = _forces(g.strings[s], forces[k, s])
+        if lost != 0:
+            return lost
+    return 0
+
+
+# ------------------------------------------------------------------------ bound per scheme
+#: the ops the policy calls (``cablefem.dynamics.policy``'s docstring), besides ``attempt``: on a
+#: string these names, on a group ``group_`` and these names
+OPS = ("evaluate", "norm", "increment", "factors_current", "forget_factors", "take_step", "set_base",
+       "restore_base", "hold", "save_original", "restore_original", "finish", "begin", "restart", "accept",
+       "auto_left", "set_auto_left", "contraction", "set_contraction", "count", "time", "last_step",
+       "record_residual", "record_stop", "place_ends", "reactions", "error", "last_error", "record_error",
+       "proposal", "set_proposal")
+#: the functions that read the scheme, directly or through another: copied per scheme by ``bound``
+#: (each one's callees before it)
+SCHEMED = ("_assemble", "evaluate", "finish", "begin", "accept", "_forces", "reactions", "error", "group_evaluate",
+           "group_finish", "group_begin", "group_accept", "group_reactions", "group_error")
+_BOUND = {}
+
+
+def _tag(scheme):
+    """The scheme's name and a hash of its functions' code: the bound functions' cache names."""
+    digest = hashlib.sha256(scheme.parameters.str.encode() + str(scheme.memory).encode()
+                            + str(scheme.rows_at_state).encode())
+    for function in (scheme.begin, scheme.point, scheme.accept, scheme.error):
+        code = function.py_func.__code__
+        digest.update(code.co_code + repr(code.co_consts).encode() + repr(code.co_names).encode())
+    return "".join(c if c.isalnum() else "_" for c in scheme.name) + "_" + digest.hexdigest()[:10]
+
+
+def bound(scheme):
+    """The policy's functions (``policy.FUNCTIONS``: newton, attempt, advance, steps) bound to the ops
+    here and to ``scheme``'s arithmetic, compiled: {"line": on a string's ``Problem``, "group": on a
+    ``Group``}; one pair per scheme, made on first use (each compiled on its first call)."""
+    tag = _tag(scheme)
+    if tag in _BOUND:
+        return _BOUND[tag]
+    module = sys.modules[__name__]
+    namespace = dict(vars(module))
+    namespace.update(scheme_begin=scheme.begin, scheme_point=scheme.point, scheme_accept=scheme.accept,
+                     scheme_error=scheme.error, ROWS_AT_STATE=scheme.rows_at_state)
+    for name in SCHEMED:  # in this order: each one's callees first
+        original = getattr(module, name)
+        function = FunctionType(original.py_func.__code__, namespace, name, original.py_func.__defaults__)
+        function.__qualname__ = f"{tag}.{name}"
+        options = {key: value for key, value in original.targetoptions.items() if key != "nopython"}
+        namespace[name] = njit(cache=True, **options)(function)
+    functions = {}
+    for kind, prefix in (("line", ""), ("group", "group_")):
+        ops = ModuleType(f"{__name__}.{tag}.{kind}")
+        for name in OPS:
+            setattr(ops, name, namespace[prefix + name])
+        functions[kind] = policy.bind(ops, compile=njit(cache=True), name=f"{kind}_{tag}")
+        ops.attempt = functions[kind]["attempt"]
+    _BOUND[tag] = functions
+    return functions

@@ -1,37 +1,33 @@
-"""Implicit time integrators with Newton per step: BDF2 and generalised-alpha, and their registry.
+"""The integrator of one line: its state, boundary, evaluator and counters, and the scheme's Python face.
 
 The semi-discrete equation of motion (desire2023 Eq. 1 after the FEM in s) is
 
     M A + G(X, V, A, t) = 0,
 
 with M the consistent (or lumped) mass and G the loads. The anchor row is fixed and the fairlead
-row follows its prescribed motion. An integrator (a scheme) writes X_{n+1} as the unknown and the
-point where the loads are evaluated, (X, V, A), as affine functions of it (``begin``, ``point``),
-so that the Newton tangent is
+row follows its prescribed motion (an end that is not prescribed, ``Line.prescribed``, is an
+unknown). A scheme (``cablefem.dynamics.scheme``: BDF2, generalised-alpha) writes X_{n+1} as the
+unknown and the point where the loads are evaluated as affine functions of it, so that Newton's
+tangent is g_x (K + v_x C + a_x M). ``Integrator`` is what every scheme shares; a scheme's file
+subclasses it and names its arithmetic (``scheme``), which this class calls for its Python face
+and the compiled steps call for theirs.
 
-    K = g_x (a_x M + dG/dX + v_x dG/dV + a_x dG/dA),   g_x = dX/dX_{n+1}, v_x, a_x the factors.
-
-Everything else is shared: the Newton policy (iterations, line search, branch corrections,
-retries, halving, growth) is ``cablefem.dynamics.policy``, run here on Python ops (``cablefem.dynamics.python_ops``)
-and, for BDF2 and generalised-alpha on the compiled kernel, in numba (``cablefem.compiled.steps``). Like scipy.integrate's
-solvers, an integrator has a ``step()`` and counters (``nfev`` residual evaluations, ``njev``
-tangents, ``nlu`` factorisations, ``newton_iterations``, ``steps``, ``rejected``). A step that
-fails at ``min_dt`` raises a ``ConvergenceError`` with its residual. ``INTEGRATORS`` is the one
-registry; ``integrator_options`` turns a scene's [solver] into their arguments.
+Steps are taken by the line's ``Group`` (``cablefem.dynamics.group``): the Newton policy
+(``cablefem.dynamics.policy``: iterations, line search, branch corrections, retries, halving and
+growth), compiled where the line evaluates with the compiled kernel on a seabed projected in the
+loop, on the Python ops (``cablefem.dynamics.python_ops``) elsewhere. A line whose end is a junction
+steps in its junction's group. Like scipy.integrate's solvers, an integrator has a ``step()`` and
+counters (``nfev`` residual evaluations, ``njev`` tangents, ``nlu`` factorisations,
+``newton_iterations``, ``steps``, ``rejected``). A step that fails at ``min_dt`` raises a
+``ConvergenceError`` with its residual.
 """
 
-from functools import cached_property
-
 import numpy as np
-import scipy.sparse.linalg as spla
 
-from cablefem.dynamics import policy, python_ops
+from cablefem.dynamics import policy
 from cablefem.errors import ConvergenceError
 from cablefem.fem import clamp
 from cablefem.fem.forms import mass_matrix
-
-#: the policy on Python ops, for every integrator
-PYTHON = policy.bind(python_ops)
 
 
 def _counter(index):
@@ -41,7 +37,7 @@ def _counter(index):
 
 
 class Integrator:
-    """Common machinery: state, boundary rows, mass, counters and the policy's Python ops.
+    """Common machinery: state, boundary rows, evaluator, counters and the scheme's Python face.
 
     system: a ``LineSystem``; X0, V0: (N, 3) initial state [m, m/s]; ``boundary(t)`` gives the
     fairlead's position, velocity and acceleration (3,) at time t, ``anchor(t)`` the anchor's (None:
@@ -52,11 +48,13 @@ class Integrator:
     kept across iterations and steps) or "auto": modified on the numpy path; with the compiled
     kernel modified Newton attempt by attempt until a step's kept factors have to be rebuilt (they
     contract slower than ``CONTRACTION``) or the step fails, then full Newton for the next
-    ``AUTO_FULL_STEPS`` attempts. Subclasses give the scheme: ``begin``, ``point``, ``accept``.
+    ``AUTO_FULL_STEPS`` attempts. ``parameters``: the values of the scheme's record. Subclasses name
+    the scheme (``scheme``, a ``cablefem.dynamics.scheme.Scheme``) and the [solver] keys it reads
+    (``options``).
     """
 
     name = "integrator"
-    rows_at_state = True  # an accepted step's rows are the state's, read by ``reactions`` (``python_ops.finish``)
+    scheme = None  # the ``Scheme`` of a subclass
 
     #: contraction factor of modified Newton above which the tangent is rebuilt
     CONTRACTION = 0.3
@@ -84,7 +82,8 @@ class Integrator:
     STRETCH = 1e-3
 
     def __init__(self, system, X0, boundary, V0=None, t0=0.0, dt=0.01, tolerance=1e-8,
-                 max_iterations=12, lumped=False, min_dt=None, newton="auto", compiled=True, anchor=None):
+                 max_iterations=12, lumped=False, min_dt=None, newton="auto", compiled=True, anchor=None,
+                 parameters=None, adaptive=False, error_tolerance=3e-4):
         self.system = system
         fem = system.fem
         self.fem = fem
@@ -97,29 +96,33 @@ class Integrator:
         self.min_dt = float(min_dt) if min_dt else self.dt / 1024.0
         self.tolerance = tolerance
         self.max_iterations = max_iterations
-        self.lumped = lumped  # the mass M and its free block M_free are assembled on first use
         self.length = system.line.unstretched_length
         self.end_points = system.points_at_ends  # a point's load rides on an end: ``reactions`` leave it out
         self.scale = float(np.linalg.norm(system.weight_vector()[fem.free_dofs])) or 1.0
         self.counters = np.zeros(len(policy.COUNTERS), dtype=np.int64)
+        self.parameters = np.zeros(1, self.scheme.parameters)
+        if parameters is not None:
+            self.parameters[0] = tuple(parameters)
+        self.clock = np.zeros(1, policy.CLOCK)
+        self.clock["t"] = self.t
+        # adaptive steps: the error control's tolerance and first step, at most dt (``policy.advance``)
+        self.adaptive, self.error_tolerance = bool(adaptive), float(error_tolerance)
+        self.clock["proposal"] = self.dt / 8 if self.adaptive else 0.0
+        self.memory = np.zeros((self.scheme.memory,) + self.X.shape)  # the scheme's rows of earlier steps
+        self.group = None  # the ``Group`` that steps this line (a group of one, made on first use)
         self.last_h = None  # the last accepted step [s]
         self.last_residual = float("nan")  # the final relative residual of the last failed attempt
         self.residual_rows = None  # M A + G at the current state, (N, 3); compiled steps may fill only
         # the anchor and fairlead rows (the reactions), leaving the others zero
         self.lu, self.lu_factors = None, None
-        self.fused = None
-        if compiled and not lumped and fem.free_dofs.size:  # a line without unknowns: the numpy path
-            from cablefem.compiled.evaluator import FusedEvaluator
-
-            self.fused = FusedEvaluator.for_system(system, system.props["mass"])
-        else:  # the numpy path needs the mass (and a lumped one checks its order) at once
-            self.M_free
-        # a compiled tangent costs about a residual and its banded LU a few microseconds, so full
-        # Newton (fewer iterations) wins; on the numpy path kept factors save more than they cost
+        # the compiled kernel, or the numpy loads with their sparse LU (a lumped mass, compiled=False,
+        # a line without unknowns)
+        self.evaluator = system.evaluator(compiled, lumped)
+        # "auto": full Newton where a tangent costs about a residual (fewer iterations win), else kept factors
         if newton not in ("auto", "full", "modified"):
             raise ValueError(f"newton must be auto, full or modified, got {newton!r}")
         self.newton_mode = {"full": policy.FULL, "modified": policy.MODIFIED}.get(
-            newton, policy.SWITCHING if self.fused is not None else policy.MODIFIED)
+            newton, policy.SWITCHING if self.evaluator.full_newton_pays else policy.MODIFIED)
         if not fem.free_dofs.size:  # one element between prescribed ends: each step one evaluation
             self.newton_mode = policy.FULL
         self.full_steps_left = 0  # "auto": attempts still to run in full Newton
@@ -136,19 +139,6 @@ class Integrator:
     # ------------------------------------------------------------------ counters
     steps, newton_iterations, nfev, njev, nlu, rejected, corrections = map(_counter, range(len(policy.COUNTERS)))
 
-    @cached_property
-    def M(self):
-        """The mass matrix (N 3, N 3), CSR (``forms.mass_matrix``), its clamped tangent rows projected
-        as the loads' are (``cablefem.fem.clamp``); the compiled steps carry the mass in their kernel,
-        so there it is assembled only if M A is needed at a nonzero A."""
-        M = mass_matrix(self.system, self.lumped)
-        return clamp.project(self.system.clamps, M, self.fem, free_only=False) if self.system.clamps else M
-
-    @cached_property
-    def M_free(self):
-        """The mass matrix's block of the free DOFs, CSR."""
-        return self.M[self.fem.free_vector_dofs][:, self.fem.free_vector_dofs].tocsr()
-
     @property
     def settings(self):
         """The policy's ``Settings`` of the Python ops, from this integrator's attributes."""
@@ -158,7 +148,8 @@ class Integrator:
         """The policy's ``Settings`` from this integrator's attributes (``parts``: see ``policy``)."""
         return policy.Settings(self.tolerance, self.increment_tolerance, self.max_iterations, self.MAX_GROWTH,
                                self.newton_mode, self.CONTRACTION, self.MIN_DAMPING, self.min_dt,
-                               float(self.AUTO_FULL_STEPS), self.STRETCH, self.MAX_CORRECTIONS, parts)
+                               float(self.AUTO_FULL_STEPS), self.STRETCH, self.MAX_CORRECTIONS, parts,
+                               float(self.adaptive), self.error_tolerance, self.dt)
 
     # ------------------------------------------------------------ helpers
     def set_boundary(self, X, V, A, t):
@@ -191,50 +182,37 @@ class Integrator:
             ends[:, 0] = positions(times) if positions is not None else [self.anchor_path(t)[0] for t in times]
         return ends
 
+    @property
+    def M(self):
+        """The mass matrix (N 3, N 3), CSR (``cablefem.fem.forms.mass_matrix``), assembled on first use."""
+        return self.evaluator.M
+
     def inertia(self, A):
         """Rows (N, 3) of M A (zeros, without assembling M, at A = 0: a start at rest)."""
-        if not A.any():
-            return np.zeros(A.shape)
-        return (self.M @ A.ravel()).reshape(A.shape)
+        return self.evaluator.inertia(A)
 
     def initial_acceleration(self):
         """A0 from (M + added mass) A0 = -G(X0, V0) on the free rows (zero at rest in equilibrium)."""
-        fem, system = self.fem, self.system
+        fem, ev = self.fem, self.evaluator
         A = np.zeros_like(self.X)
         X, V = self.X.copy(), self.V.copy()
         self.set_boundary(X, V, A, self.t)
-        if self.fused is not None:  # the same, compiled: the mass is the tangent's a_x part
-            rows, with_mass = self.fused.evaluate(X, V, A, 0.0, 1.0)
-            if np.linalg.norm(rows[fem.free_dofs]) > 1e-12 * self.scale:
-                mass = self.fused.add_constraints(with_mass - self.fused.evaluate(X, V, A, 0.0, 0.0)[1])
-                factors = self.fused.factorize(mass)
-                if factors is None:
-                    raise ConvergenceError(f"{self.name}: the mass matrix is singular at t = {self.t:.6g} s "
-                                           "(check the line's mass and added-mass coefficients)")
-                A[fem.free_dofs] = self.fused.solve(factors, rows)
+        rows, with_mass = ev.evaluate(X, V, A, 0.0, 1.0, t=self.t)
+        if np.linalg.norm(rows[fem.free_dofs]) <= 1e-12 * self.scale:
             return A
-        residual, blocks = system.evaluate(system.state(X, V, A, self.t), jacobian=True,
-                                           velocity_factor=0.0, acceleration_factor=1.0)
-        rhs = -(residual + self.inertia(A))[fem.free_dofs].ravel()
-        if np.linalg.norm(rhs) <= 1e-12 * self.scale:
-            return A
-        # d(G + M A)/dA restricted to the free rows: the acceleration blocks only
-        static = system.evaluate(system.state(X, V, A, self.t), jacobian=True)[1]
-        K = system.matrix(blocks) - system.matrix(static) + self.M_free
-        if system.clamps:  # the constraint, which the difference took out
-            K = K + clamp.constraint_matrix(system.clamps, fem)
-        A[fem.free_dofs] = spla.spsolve(K.tocsc(), rhs).reshape(-1, 3)
+        factors = ev.mass_factors(X, V, A, with_mass)
+        if factors is None:
+            raise ConvergenceError(f"{self.name}: the mass matrix is singular at t = {self.t:.6g} s "
+                                   "(check the line's mass and added-mass coefficients)")
+        A[fem.free_dofs] = ev.solve(factors, rows)
         return A
 
     # ------------------------------------------------------------ the policy's Python ops
-    def rows_and_tangent(self, X, V, A, t, v_x, a_x, jacobian, stick=False):
+    def rows_and_tangent(self, X, V, A, t, v_x, a_x, jacobian, held=False):
         """Rows M A + G (N, 3) at the evaluation point and, with ``jacobian``, the tangent of the
-        loads and mass in the representation ``increment`` factors (``stick``: held branches)."""
-        if self.fused is not None:
-            self.nfev += 1
-            return self.fused.evaluate(X, V, A, v_x, a_x, jacobian, stick)
-        residual, blocks = self.evaluate(X, V, A, t, v_x, a_x, jacobian)
-        return residual + self.inertia(A), blocks
+        loads and mass in the representation ``increment`` factors (``held``: held branches)."""
+        self.nfev += 1
+        return self.evaluator.evaluate(X, V, A, v_x, a_x, jacobian, held, t)
 
     def evaluate(self, X, V, A, t, v_x, a_x, jacobian=True):
         """Load residual rows and tangent blocks (the numpy loads) at an evaluation point."""
@@ -246,9 +224,9 @@ class Integrator:
         factors of ``tangent`` (counted, kept), else from the kept ones; None if the tangent is
         singular or the increment not finite."""
         if refactor:
-            _, a_x, g_x = self.factors
+            g_x = self.factors[2]
             self.njev += 1
-            self.lu = self.factorize(tangent, g_x, a_x)
+            self.lu = self.evaluator.factorize(tangent, g_x)
             if self.lu is None:
                 return None
             self.nlu += 1
@@ -256,45 +234,77 @@ class Integrator:
         dX = self.solve(self.lu, rows)
         return dX if np.all(np.isfinite(dX)) else None
 
-    def factorize(self, tangent, g_x, a_x):
-        """LU factors of g_x (K + a_x M), or None when singular."""
-        if self.fused is not None:
-            return self.fused.factorize(tangent, g_x)
-        try:
-            return spla.splu((g_x * (self.system.matrix(tangent) + a_x * self.M_free)).tocsc())
-        except RuntimeError:
-            return None
-
     def solve(self, factors, rows):
         """Newton increment (N_free, 3) of the free DOFs for residual rows (N, 3)."""
-        if self.fused is not None:
-            return self.fused.solve(factors, rows)
-        return factors.solve(-rows[self.fem.free_dofs].ravel()).reshape(-1, 3)
+        return self.evaluator.solve(factors, rows)
 
-    def predict(self, h):
-        """Taylor predictor of the positions at t + h with the prescribed ends at ``self.targets``
-        (``self.guess``)."""
-        fem = self.fem
-        guess = self.X + h * self.V + 0.5 * h * h * self.A
+    # --------------------------------------------------------------- the scheme, Python face
+    def begin(self, h):
+        """A step of h from the state (the scheme's ``begin``): the factors (v_x, a_x, g_x), the time
+        of the loads ``t_eval``, and the predictor ``guess`` with the prescribed ends at
+        ``self.targets``."""
+        fem, clock = self.fem, self.clock
+        clock["t"] = self.t
+        guess = np.empty_like(self.X)
+        self.scheme.begin(self.parameters, clock, self.X, self.V, self.A, self.memory, guess, h)
         if fem.prescribed[1]:
             guess[fem.fairlead_dof] = self.targets[1]
         if fem.prescribed[0]:
             guess[fem.anchor_dof] = self.targets[0]
         self.guess = guess
+        self.factors = (float(clock["v_x"][0]), float(clock["a_x"][0]), float(clock["g_x"][0]))
+        self.t_eval = float(clock["t_eval"][0])
+
+    def point(self, X1):
+        """The evaluation point (X, V, A), each (N, 3), of trial positions X1 (the scheme's ``point``)."""
+        Xe, Ve, Ae = np.empty_like(X1), np.empty_like(X1), np.empty_like(X1)
+        self.scheme.point(self.parameters, self.clock, self.X, self.V, self.A, self.memory, X1, Xe, Ve, Ae)
+        return Xe, Ve, Ae
+
+    def accept(self, h):
+        """The state at t + h from the converged ``X1`` (the scheme's ``accept``)."""
+        self.prediction = self.guess
+        X, V, A, memory = self.X.copy(), self.V.copy(), self.A.copy(), self.memory.copy()
+        self.scheme.accept(self.parameters, self.clock, X, V, A, memory, self.X1)
+        self.X, self.V, self.A, self.memory = X, V, A, memory
+        self.t, self.last_h = self.t + h, h
+        self.clock["t"], self.clock["h_before"], self.clock["last_h"] = self.t, h, h
+        # the rows of the converged point are the state's (BDF2), or the reactions evaluate again
+        self.residual_rows = self.rows if self.scheme.rows_at_state else None
+
+    def error(self):
+        """The local tension error of the converged trial ``X1`` relative to the largest tension
+        (``tension_error`` of the scheme's solution of lower order), or -1 where the scheme has none."""
+        low = np.empty_like(self.X1)
+        if not self.scheme.error(self.parameters, self.clock, self.X, self.V, self.A, self.memory, self.X1,
+                                 self.guess, low):
+            return -1.0
+        return self.tension_error(low, self.X1)
+
+    @staticmethod
+    def options(solver):
+        """The scheme's keyword arguments from a scene's [solver] (none but the common ones)."""
+        return {}
 
     # --------------------------------------------------------------- step
+    def stepper(self):
+        """The ``Group`` that steps this line: its junction's, or a group of one, made on first use."""
+        if self.group is None:
+            from cablefem.dynamics.group import Group  # the group module builds on this one
+
+            self.group = Group([self])
+        return self.group
+
     def attempt(self, h):
         """Try one step of size h (``policy.attempt``); update the state and return True on success."""
-        return PYTHON["attempt"](self, h) == policy.CONVERGED
+        return self.stepper().attempt(h) == policy.CONVERGED
 
     def step(self, dt=None, first=None):
         """Advance exactly by dt (default: the current step) [s], as ``policy.advance`` does: a
         failed attempt is halved (to ``min_dt``), the steps grow back by at most ``MAX_GROWTH``;
         ``first``: the first attempt's size, when a caller has seen a longer one fail. Returns dt."""
         target = float(dt or self.dt)
-        status = PYTHON["advance"](self, 0, target, float(first or 0.0))
-        if status == policy.FAILED:
-            raise self.too_small(self.stopped)
+        self.stepper().step(target, first)
         return target
 
     def too_small(self, h):
@@ -308,15 +318,7 @@ class Integrator:
     def march(self, times):
         """Step to each of ``times`` (ascending, after t) in turn, each as ``step`` does; returns
         the forces (m, 2, 3) the line exerts on its fairlead and anchor after each step."""
-        forces = np.empty((len(times), 2, 3))
-        for k, t in enumerate(times):
-            try:
-                self.step(t - self.t)
-            except ConvergenceError as error:
-                error.forces = forces[:k]  # the steps taken, for a caller writing them out
-                raise
-            forces[k] = self.reactions()
-        return forces
+        return self.stepper().member_forces(self, times)
 
     def fairlead_positions(self, times):
         """The prescribed fairlead positions (m, 3) at ``times`` (m,): one vectorised call when the
@@ -327,32 +329,26 @@ class Integrator:
         return np.array([self.boundary(t)[0] for t in times], dtype=float).reshape(-1, 3)
 
     def snapshot(self):
-        """The state needed to undo steps (see ``restore``): the state, the scheme's memory and the
-        committed history of the points."""
+        """The state needed to undo steps (see ``restore``): the state, the scheme's memory, the clock
+        and the committed history of the points."""
         history = {rule: old.copy() for rule, (old, _) in self.system.history.items()}
-        return (self.t, self.X, self.V, self.A, self.residual_rows, self.last_h, self.memory(), history)
+        return (self.t, self.X, self.V, self.A, self.residual_rows, self.last_h, self.memory.copy(),
+                self.clock.copy(), history)
 
     def restore(self, snapshot):
         """Go back to a ``snapshot``."""
-        self.t, self.X, self.V, self.A, self.residual_rows, self.last_h, memory, history = snapshot
-        self.set_memory(memory)
+        self.t, self.X, self.V, self.A, self.residual_rows, self.last_h, memory, clock, history = snapshot
+        self.memory, self.clock = memory.copy(), clock.copy()
         for rule, old in history.items():
             self.system.history[rule][0][...] = old
 
-    def memory(self):
-        """What the scheme keeps of earlier steps (``snapshot``)."""
-        return None
-
-    def set_memory(self, memory):
-        """Put back what ``memory`` returned."""
-
-    def tension_error(self, X_low):
-        """Estimated local error of the last step as a fraction of the line's largest tension:
-        EA |d(dX)/ds| at the axial quadrature points for dX = X - X_low, the difference between
-        the step and a solution of lower order."""
-        fem = self.fem
-        _, d_diff = fem.at_quadrature(self.X - X_low, fem.reduced)
-        _, dr = fem.at_quadrature(self.X, fem.reduced)
+    def tension_error(self, X_low, X=None):
+        """Estimated local error of a step as a fraction of the line's largest tension: EA |d(dX)/ds|
+        at the axial quadrature points for dX = X - X_low, the difference between the step's
+        positions X (default: the state) and a solution of lower order."""
+        fem, X = self.fem, self.X if X is None else X
+        _, d_diff = fem.at_quadrature(X - X_low, fem.reduced)
+        _, dr = fem.at_quadrature(X, fem.reduced)
         EA = self.system.props["EA"][:, None]
         error = EA * np.linalg.norm(d_diff, axis=0)
         tension = EA * np.maximum(np.linalg.norm(dr, axis=0) - 1.0, 0.0)
@@ -379,13 +375,13 @@ class Integrator:
         system = self.system
         if not system.clamps:
             return np.zeros((2, 3))
-        if self.fused is not None:
+        if self.evaluator.compiled:
             from cablefem.compiled.hermite import CLAMP_ROWS
 
-            return clamp.reaction_moments(system, self.X, self.fused.points.clamp[:, CLAMP_ROWS:])
+            return clamp.reaction_moments(system, self.X, self.evaluator.points.clamp[:, CLAMP_ROWS:])
         state = system.state(self.X, self.V, self.A, self.t)
         rows = system.evaluate(state, jacobian=False, constrained=False)[0]
-        rows = rows + (mass_matrix(system, self.lumped) @ self.A.ravel()).reshape(self.A.shape)
+        rows = rows + (mass_matrix(system, self.evaluator.lumped) @ self.A.ravel()).reshape(self.A.shape)
         return clamp.reaction_moments(system, self.X, rows[list(self.fem.tangent_dofs)])
 
     def statistics(self):

@@ -27,6 +27,10 @@ only ``prob.settings`` (a ``Settings``) and calls ops for everything else:
     hold(prob, again) -> bool              hold the branches the trial reached (``kernels.hold_points``)
     save_original(prob), restore_original(prob) -> float   Newton's own step around corrections
     finish(prob) -> int                    the rows the reactions need at a converged point
+    error(prob) -> float                   the converged trial's local error in tension relative to
+                                           the largest tension (the scheme's ``error``; < 0: none)
+    last_error(prob), record_error(prob, e)   that error, kept for ``advance``
+    proposal(prob), set_proposal(prob, h)  the next step the error control proposes (0: none yet)
     begin(prob, h), restart(prob), accept(prob, h)   the scheme: predictor, guess, state update
     auto_left(prob) -> float, set_auto_left(prob, value)   "auto" Newton's full-Newton attempts
     contraction(prob) -> float, set_contraction(prob, value)   the kept factors' contraction of the
@@ -52,8 +56,9 @@ import numpy as np
 #: failed attempts, branch corrections
 STEPS, ITERATIONS, NFEV, NJEV, NLU, REJECTED, CORRECTIONS = 0, 1, 2, 3, 4, 5, 6
 COUNTERS = ("steps", "newton_iterations", "nfev", "njev", "nlu", "rejected", "corrections")
-#: what ``newton`` and ``attempt`` return
-CONVERGED, DIVERGED, LOST = 0, 1, 2
+#: what ``newton`` and ``attempt`` return (``attempt``: INACCURATE, converged but its local error above
+#: the tolerance of adaptive steps)
+CONVERGED, DIVERGED, LOST, INACCURATE = 0, 1, 2, 3
 #: what ``advance`` and ``steps`` return: all taken; Newton failed with the step at its smallest;
 #: an attempt would end where this path cannot place the fairlead; the seabed walk lost a point;
 #: (``steps`` only) the step was taken but the walk lost a point in evaluating its reactions
@@ -66,7 +71,9 @@ FULL, MODIFIED, SWITCHING = 0, 1, 2
 #: modified Newton rebuilds its factors; min_damping of the line search; min_dt [s]; auto_full_steps:
 #: full-Newton attempts after trouble; stretch: a step stretches by this fraction rather than leave a
 #: sliver; max_corrections of a Newton step on new branches; parts: the splits of a step at which
-#: ``fairlead`` can place the fairlead (0: anywhere)
+#: ``place_ends`` can place the prescribed ends (0: anywhere); adaptive (1: steps from the error
+#: control, 0: fixed), error_tolerance (the local tension error a step may make, relative to the
+#: largest tension) and max_step [s] of adaptive steps
 #: the ops a bound set calls (``bind``)
 ops = None
 #: False and True, and small whole numbers, as run-time values for the ops' arguments: numba compiles
@@ -91,8 +98,22 @@ THETA_FLOOR = 1e-2
 #: friction (dt 0.005 s) none of 637 at 0.25 (0.52x). tests/test_march_alpha.py holds 0.25
 STOP_SAFETY = 0.25
 
+#: a step's clock (one record, per string): t [s], the step before (0 before the first), the last step
+#: (0 if none), the attempt that stopped a run, the last attempt's final relative residual, the
+#: attempt's factors (v_x, a_x, g_x) with d(X, V, A)/dX_{n+1} = g_x (1, v_x, a_x), its size h [s] and
+#: the time t_eval [s] at which the scheme evaluates the loads; the last converged attempt's local
+#: error (relative tension, < 0: none) and the step the error control proposes next [s] (0: none yet)
+CLOCK = np.dtype([("t", "f8"), ("h_before", "f8"), ("last_h", "f8"), ("stopped", "f8"), ("residual", "f8"),
+                  ("v_x", "f8"), ("a_x", "f8"), ("g_x", "f8"), ("h", "f8"), ("t_eval", "f8"), ("error", "f8"),
+                  ("proposal", "f8")])
+#: what modified Newton's kept factors belong to (one record, kept between runs): the v_x of the
+#: factors (NaN: none; a_x and g_x follow from it), "auto"'s full-Newton attempts still to run and the
+#: kept factors' contraction of the residual (< 0: not known)
+FACTORS = np.dtype([("v_x", "f8"), ("auto_left", "f8"), ("contraction", "f8")])
+
 Settings = namedtuple("Settings", "tolerance increment_tolerance max_iterations growth newton contraction "
-                                  "min_damping min_dt auto_full_steps stretch max_corrections parts")
+                                  "min_damping min_dt auto_full_steps stretch max_corrections parts adaptive "
+                                  "error_tolerance max_step")
 
 
 def newton(prob, reuse, max_corrections):
@@ -210,7 +231,9 @@ def attempt(prob, h):
     step's kept factors have to be rebuilt or the step fails, then full Newton for the next
     ``settings.auto_full_steps`` attempts); an attempt whose modified Newton fails is redone from
     its start with a fresh tangent ("auto": in full Newton), one that failed with branch
-    corrections is tried once more without. On CONVERGED the state moves on to t + h."""
+    corrections is tried once more without. With adaptive steps, a converged attempt whose local
+    error (``ops.error``) is above ``settings.error_tolerance`` is INACCURATE (unless half of it is
+    below ``min_dt``). On CONVERGED the state moves on to t + h."""
     settings = prob.settings
     mode = settings.newton
     ops.begin(prob, h)
@@ -232,6 +255,11 @@ def attempt(prob, h):
             ops.set_auto_left(prob, settings.auto_full_steps)
         elif not reuse:
             ops.set_auto_left(prob, ops.auto_left(prob) - 1.0)
+    if outcome == CONVERGED and settings.adaptive > 0.0:
+        error = ops.error(prob)
+        ops.record_error(prob, error)
+        if error > settings.error_tolerance and 0.5 * h >= settings.min_dt:
+            return INACCURATE
     if outcome == CONVERGED:
         ops.accept(prob, h)
     return outcome
@@ -242,11 +270,25 @@ def advance(prob, k, target, first):
     fails (down to ``settings.min_dt``), never longer than ``settings.growth`` times the last step
     (variable-step BDF2 is zero-stable below 1 + sqrt(2), Grigorieff 1983) and never leaving a
     sliver of less than ``settings.stretch`` of an attempt to the end; ``first``: the first
-    attempt's size (0: target), when a longer one was seen to fail. Returns DONE, FAILED (a
-    halving would go below ``min_dt``), SPLIT (the fairlead cannot be placed where an attempt
-    would end: ``fairlead``) or PROJECTION; the size of the attempt that stopped is recorded."""
+    attempt's size (0: target), when a longer one was seen to fail.
+
+    With adaptive steps (``settings.adaptive``) the steps come from the error control, the one step
+    control of fixed and adaptive runs alike: a step whose local tension error e (``ops.error``) is
+    above the tolerance tol is rejected and tried again at h max(0.2, 0.9 (tol / e)^(1/3)) (the
+    error is O(h^3) for the second-order schemes); an accepted one proposes the next, h min(2,
+    max(0.5, 0.9 (tol / e)^(1/3))), at most ``settings.max_step``, kept across calls
+    (``ops.proposal``); a step shortened to land on ``target`` or on a split only grows it. Where ``parts`` > 0
+    (the compiled steps, which know the prescribed ends at ``parts`` splits of the target) a step
+    ends on a split: an adaptive one is cut back to the split before it.
+
+    Returns DONE, FAILED (a halving would go below ``min_dt``), SPLIT (the ends cannot be placed
+    where an attempt would end: ``place_ends``) or PROJECTION; the size of the attempt that stopped
+    is recorded."""
     settings = prob.settings
+    adaptive = settings.adaptive > 0.0
     done, h = 0.0, first if first > 0.0 else target
+    if adaptive and first <= 0.0 and ops.proposal(prob) > 0.0:
+        h = ops.proposal(prob)
     parts = settings.parts
     while target - done > 1e-9 * target:
         remaining = target - done
@@ -255,12 +297,16 @@ def advance(prob, k, target, first):
             h = min(h, settings.growth * ops.last_step(prob))
         if remaining - h <= settings.stretch * h:  # land on the end, never leave a sliver of it
             h = remaining
+        planned = h
         j = parts
         if parts > 0:
             share = (done + h) / target * parts  # where the attempt ends, in 1/parts of the step
             j = int(round(share))
-            if abs(share - j) > 1e-6 or j < 1:
-                ops.record_stop(prob, h)
+            if adaptive and abs(share - j) > 1e-6:  # cut back to the split before
+                j = int(math.floor(share + 1e-6))
+                h = j * target / parts - done
+            if abs((done + h) / target * parts - j) > 1e-6 or j < 1 or h <= 0.0:
+                ops.record_stop(prob, planned)
                 return SPLIT
         if not ops.place_ends(prob, k, j, h):
             ops.record_stop(prob, h)
@@ -276,9 +322,23 @@ def advance(prob, k, target, first):
                 return FAILED
             h *= 0.5
             continue
+        if outcome == INACCURATE:  # converged, its error too large: smaller, as the error says
+            ops.count(prob, NUMBER[REJECTED], NUMBER[1])
+            h *= max(0.2, 0.9 * (settings.error_tolerance / ops.last_error(prob)) ** (1.0 / 3.0))
+            ops.set_proposal(prob, h)
+            continue
         ops.count(prob, NUMBER[STEPS], NUMBER[1])
         done += h
-        h = target
+        if adaptive:
+            error = ops.last_error(prob)
+            if error >= 0.0:  # propose the next; a step cut to land on the end or a split only grows it
+                factor = 0.9 * (settings.error_tolerance / error) ** (1.0 / 3.0) if error > 0.0 else 2.0
+                proposal = min(settings.max_step, h * min(2.0, max(0.5, factor)))
+                if h >= ops.proposal(prob) * (1 - 1e-12) or proposal > ops.proposal(prob):
+                    ops.set_proposal(prob, proposal)
+            h = ops.proposal(prob) if ops.proposal(prob) > 0.0 else target
+        else:
+            h = target
     return DONE
 
 

@@ -1,146 +1,218 @@
-"""The Newton policy's ops in Python (``cablefem.dynamics.policy``): ``prob`` is an ``Integrator``.
+"""The Newton policy's ops in Python (``cablefem.dynamics.policy``): ``prob`` is a ``Group`` of strings
+(``cablefem.dynamics.group``: a line alone, or the strings that meet at junctions).
 
-They evaluate through the integrator: the compiled kernel per evaluation with its banded LU
-(``cablefem.compiled.evaluator``), or the numpy loads and a sparse LU (``compiled=False``, a lumped mass), at
-the evaluation point of the integrator's scheme (``Integrator.point``). The same policy bound to
-``cablefem.compiled.steps``'s compiled ops runs BDF2 and generalised-alpha steps in numba; the two give the
-same numbers.
+They evaluate through each string's integrator and evaluator (``cablefem.fem.evaluator``: the
+compiled kernel per evaluation with its banded LU, or the numpy loads and a sparse LU) at the
+evaluation point of its scheme (``Integrator.point``). The same policy bound to the compiled ops
+(``cablefem.compiled.steps``) steps the strings in numba; the two give the same numbers to round-off.
 """
 
 import numpy as np
 
-from cablefem.dynamics import policy
 
 
-def evaluate(prob, tangent, held):
-    X, V, A = prob.point(prob.X1)
-    prob.rows, prob.tangent = prob.rows_and_tangent(X, V, A, prob.t_eval, prob.factors[0], prob.factors[1],
-                                                    tangent, held)
+def evaluate(g, tangent, held):
+    for m in g.members:
+        X, V, A = m.point(m.X1)
+        m.rows, m.tangent = m.rows_and_tangent(X, V, A, m.t_eval, m.factors[0], m.factors[1], tangent, held)
     return 0
 
 
-def finish(prob):
+def finish(g):
     """The rows at a point Newton accepted without evaluating it: for the reactions at the state
     (BDF2) and for the history the loads commit; neither needed (generalised-alpha's reactions
-    evaluate at the state, ``GeneralizedAlpha.accept``), nothing is evaluated."""
-    if not prob.rows_at_state and not prob.system.kept_history():
-        return 0
-    return evaluate(prob, False, False)
+    evaluate at the state), nothing is evaluated."""
+    for m in g.members:
+        if m.scheme.rows_at_state or m.system.kept_history():
+            X, V, A = m.point(m.X1)
+            m.rows, m.tangent = m.rows_and_tangent(X, V, A, m.t_eval, m.factors[0], m.factors[1], False, False)
+    return 0
 
 
-def norm(prob):
-    return float(np.linalg.norm(prob.rows[prob.fem.free_dofs]) / prob.scale)
+def norm(g):
+    """The group's relative residual: the strings' rows at their free nodes that are no junction end,
+    and each junction's balance (the sum of its string ends' rows)."""
+    if not g.junctions and len(g.members) == 1:
+        m = g.members[0]
+        return float(np.linalg.norm(m.rows[m.fem.free_dofs]) / m.scale)
+    total = sum(float(np.sum(m.rows[interior] ** 2)) for m, interior in zip(g.members, g.interior))
+    balance = np.zeros((len(g.names), 3))
+    for m, ends in zip(g.members, g.ends):
+        for _, _, j, dof in ends:
+            balance[j] += m.rows[dof]
+    return float(np.sqrt(total + np.sum(balance ** 2)) / g.scale)
 
 
-def increment(prob, refactor):
-    """The Newton step (N_free, 3) into ``prob.newton_step``; its largest entry, NaN when the tangent
-    is singular or the step not finite."""
-    step = prob.increment(prob.tangent, prob.rows, refactor)
-    if step is None:
-        return float("nan")
-    prob.newton_step = step
-    return float(np.max(np.abs(step), initial=0.0))  # 0: a line with no unknowns
+def _size(g, steps):
+    """The largest entry of the strings' steps, each in the first string's increment tolerance."""
+    return max(float(np.max(np.abs(step), initial=0.0)) * scale  # 0: a line with no unknowns
+               for step, scale in zip(steps, g.increment_scale))
 
 
-def factors_current(prob):
-    return prob.lu is not None and prob.lu_factors == prob.factors
+def increment(g, refactor):
+    """Every string's Newton step into its ``newton_step`` (condensed onto the junctions); the largest
+    entry (``_size``), NaN when a tangent is singular or a step not finite."""
+    steps = []
+    for k, m in enumerate(g.members):
+        step = m.increment(m.tangent, m.rows, refactor)
+        if step is None:
+            return float("nan")
+        if refactor and g.ends[k]:
+            m.junction_columns = g.columns(k)
+            if m.junction_columns is None:
+                return float("nan")
+        steps.append(step)
+    if g.junctions:
+        steps = g.condense(steps)
+        if steps is None or not all(np.all(np.isfinite(step)) for step in steps):
+            return float("nan")
+    for m, step in zip(g.members, steps):
+        m.newton_step = step
+    return _size(g, steps)
 
 
-def forget_factors(prob):
-    prob.lu = None
+def factors_current(g):
+    return all(m.lu is not None and m.lu_factors == m.factors for m in g.members)
 
 
-def take_step(prob, fraction):
-    X1 = prob.base.copy()
-    X1[prob.fem.free_dofs] += fraction * prob.newton_step
-    prob.X1 = X1
+def forget_factors(g):
+    for m in g.members:
+        m.lu = None
 
 
-def set_base(prob):
-    prob.base = prob.X1
-    if prob.fused is not None:
-        prob.fused.keep()
+def take_step(g, fraction):
+    for m in g.members:
+        X1 = m.base.copy()
+        X1[m.fem.free_dofs] += fraction * m.newton_step
+        m.X1 = X1
 
 
-def restore_base(prob):
-    prob.X1 = prob.base.copy()
+def set_base(g):
+    for m in g.members:
+        m.base = m.X1
+        m.evaluator.keep()
 
 
-def hold(prob, again):
-    """The branch holds need the compiled kernel's per-point state: none with the numpy loads."""
-    return prob.fused is not None and prob.fused.hold(again)
+def restore_base(g):
+    for m in g.members:
+        m.X1 = m.base.copy()
 
 
-def save_original(prob):
-    prob.original_step = prob.newton_step
+def hold(g, again):
+    """The branch holds of every string's evaluator (the compiled kernel's per-point state; none with
+    the numpy loads)."""
+    held = [m.evaluator.hold(again) for m in g.members]
+    return any(held)
 
 
-def restore_original(prob):
-    prob.newton_step = prob.original_step
-    return float(np.max(np.abs(prob.original_step)))
+def save_original(g):
+    for m in g.members:
+        m.original_step = m.newton_step
 
 
-def attempt(prob, h):
-    """The integrator's ``attempt`` (the policy's, on these ops)."""
-    return policy.CONVERGED if prob.attempt(h) else policy.DIVERGED
+def restore_original(g):
+    for m in g.members:
+        m.newton_step = m.original_step
+    return _size(g, [m.original_step for m in g.members])
 
 
-def begin(prob, h):
-    prob.begin(h)
+def attempt(g, h):
+    """The group's ``attempt`` (the policy's, on these ops, or compiled)."""
+    return g.attempt(h)
 
 
-def restart(prob):
-    prob.X1 = prob.guess.copy()
+def error(g):
+    """The largest of the strings' local tension errors (``Integrator.error``); -1 where one has none."""
+    errors = [m.error() for m in g.members]
+    return -1.0 if min(errors) < 0.0 else max(errors)
 
 
-def accept(prob, h):
-    prob.accept(h)
-    prob.system.commit_history()  # the compiled kernel's records are the same arrays
+def last_error(g):
+    return float(g.members[0].clock["error"][0])
 
 
-def auto_left(prob):
-    return prob.full_steps_left
+def record_error(g, value):
+    g.members[0].clock["error"] = value
 
 
-def set_auto_left(prob, value):
-    prob.full_steps_left = value
+def proposal(g):
+    return float(g.members[0].clock["proposal"][0])
 
 
-def contraction(prob):
-    return prob.contraction
+def set_proposal(g, value):
+    for m in g.members:
+        m.clock["proposal"] = value
 
 
-def set_contraction(prob, value):
-    prob.contraction = value
+def begin(g, h):
+    """Every string's step of h (its scheme's ``begin``); each junction where its first string's
+    predictor puts it."""
+    for m in g.members:
+        m.begin(h)
+    for name, j in zip(g.names, range(len(g.names))):
+        k, end = g.junctions[name][0]
+        at = g.members[k].guess[g.members[k].fem.end_dofs[end]].copy()
+        for k, end in g.junctions[name][1:]:
+            g.members[k].guess[g.members[k].fem.end_dofs[end]] = at
 
 
-def count(prob, counter, amount):
-    prob.counters[counter] += amount
-    return int(prob.counters[counter])
+def restart(g):
+    for m in g.members:
+        m.X1 = m.guess.copy()
 
 
-def time(prob):
-    return prob.t
+def accept(g, h):
+    for m in g.members:
+        m.accept(h)
+        m.system.commit_history()  # the compiled kernel's records are the same arrays
 
 
-def last_step(prob):
-    return prob.last_h or 0.0
+def auto_left(g):
+    return g.members[0].full_steps_left
 
 
-def record_residual(prob, value):
-    prob.last_residual = value
+def set_auto_left(g, value):
+    g.members[0].full_steps_left = value
 
 
-def record_stop(prob, h):
-    prob.stopped = h
+def contraction(g):
+    return g.members[0].contraction
 
 
-def place_ends(prob, k, j, h):
-    """The prescribed ends where their paths have them at the end of an attempt of h [s]."""
-    prob.targets = prob.ends_at(prob.t + h)
+def set_contraction(g, value):
+    g.members[0].contraction = value
+
+
+def count(g, counter, amount):
+    for m in g.members:
+        m.counters[counter] += amount
+    return int(g.members[0].counters[counter])
+
+
+def time(g):
+    return g.members[0].t
+
+
+def last_step(g):
+    return g.members[0].last_h or 0.0
+
+
+def record_residual(g, value):
+    for m in g.members:
+        m.last_residual = value
+
+
+def record_stop(g, h):
+    g.stopped = h
+
+
+def place_ends(g, k, j, h):
+    """Every string's prescribed ends where their paths have them at the end of an attempt of h [s]."""
+    for m in g.members:
+        m.targets = m.ends_at(m.t + h)
     return True
 
 
-def reactions(prob, forces, k):
-    forces[k] = prob.reactions()
+def reactions(g, forces, k):
+    forces[k] = g.reactions()
     return 0

@@ -25,6 +25,15 @@ class _Registry(dict):
 
 
 #: the one registry of integrators: [solver] integrator names their key (docs/architecture.md,
-#: "Adding an integrator"); ``cablefem.dynamics.schemes.integrator_options`` turns a scene's [solver] into
-#: their arguments
-INTEGRATORS = _Registry({"bdf2": "cablefem.dynamics.schemes.BDF2", "generalized-alpha": "cablefem.dynamics.schemes.GeneralizedAlpha"})
+#: "Adding an integrator"): the integrator class, or where to import it from
+INTEGRATORS = _Registry({"bdf2": "cablefem.dynamics.bdf2.BDF2",
+                         "generalized-alpha": "cablefem.dynamics.generalized_alpha.GeneralizedAlpha"})
+
+
+def integrator_options(solver, integrator=None):
+    """Keyword arguments of ``integrator`` (a class, or its name in ``INTEGRATORS``; default:
+    ``solver.integrator``) from a scene's ``Solver``: the common ones and those its class reads
+    (``Integrator.options``)."""
+    cls = integrator if isinstance(integrator, type) else INTEGRATORS[integrator or solver.integrator]
+    return {"tolerance": solver.tolerance, "newton": solver.newton, "adaptive": solver.adaptive,
+            "error_tolerance": solver.error_tolerance, **cls.options(solver)}

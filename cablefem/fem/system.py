@@ -20,6 +20,7 @@ import scipy.sparse as sp
 
 from cablefem.fem import clamp, forms
 from cablefem.fem.discretisation import LineFEM
+from cablefem.fem.evaluator import NumpyEvaluator
 from cablefem.loads import State, add, catalog
 from cablefem.loads.tension import axial_tension, strain
 
@@ -162,6 +163,19 @@ class LineSystem:
             at = lambda Y: None if Y is None else np.ascontiguousarray(Y[vertices].T)  # noqa: E731
             full.nodes = State(at(X), None, at(V), None, at(A), t)
         return full
+
+    def evaluator(self, compiled=True, lumped=False):
+        """The evaluator of this system (``cablefem.fem.evaluator``): compiled (``FusedEvaluator``)
+        unless ``compiled`` is False, the mass is lumped (only the numpy face assembles it) or the line
+        has no unknowns (one element between prescribed ends: the band would be empty)."""
+        if compiled and not lumped and self.fem.free_dofs.size:
+            from cablefem.compiled.evaluator import FusedEvaluator  # numba only where it is used
+
+            return FusedEvaluator(self, self.props["mass"])
+        numpy = NumpyEvaluator(self, lumped)
+        if lumped:
+            numpy.M  # a lumped mass checks the element order now, not at the first step
+        return numpy
 
     def evaluate(self, state, jacobian=True, velocity_factor=0.0, acceleration_factor=0.0, constrained=True):
         """Residual rows (N, 3) of the loads and, with ``jacobian``, the tangent blocks

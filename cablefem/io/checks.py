@@ -7,7 +7,6 @@ once for TOML and MoorDyn scenes alike (``cablefem.io.load_scene``), and by
 
 - names: the scene name starts every output file name, line names head
   tensions.csv columns;
-- settings that exclude each other (adaptive steps need BDF2);
 - problem size: the nodes of all lines, the steps and frames of a run;
 - the line ends against the water and the seabed: no seabed above the still water surface below a
   line end, no anchor or fairlead below the seabed (a padeye may lie there only with ``[soil]``);
@@ -52,9 +51,6 @@ def _error(scene, key, reason):
 def check_scene(scene):
     """Every scene-level check of this module; returns the scene (InputError at the first failure)."""
     check_names(scene)
-    if scene.solver.adaptive and scene.solver.integrator != "bdf2":
-        raise _error(scene, "solver.adaptive", "adaptive steps need integrator = \"bdf2\", got "
-                     f"\"{scene.solver.integrator}\"")
     check_size(scene)
     check_run(scene)
     check_ends(scene)

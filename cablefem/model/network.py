@@ -360,17 +360,13 @@ def point_position(point, bodies):
 
 def check_no_coupling(scene):
     """InputError if ``scene`` has free bodies, whose dynamics are not solved yet (their statics
-    are: ``cablefem.statics.network``, ``cablefem static``); junctions step with ``JunctionSteps``
-    (BDF2 at fixed steps only)."""
-    junctions, free_bodies = coupling(scene.lines, scene.points, scene.bodies)
+    are: ``cablefem.statics.network``, ``cablefem static``); junctions step in a
+    ``cablefem.dynamics.group.Group``, with any integrator."""
+    _, free_bodies = coupling(scene.lines, scene.points, scene.bodies)
     if free_bodies:
         what = ", ".join(f"body '{name}' (free)" for name in free_bodies)
         raise InputError(f"{what}: the dynamics of a free body are not solved yet (`cablefem static` solves "
                          "its equilibrium); for a run, make the body coupled or fixed", key="bodies")
-    solver = scene.solver
-    if junctions and (solver.integrator != "bdf2" or solver.adaptive):
-        raise InputError(f"point '{junctions[0]}' joins three or more lines: a network with junctions runs "
-                         "with integrator = \"bdf2\" and fixed steps (adaptive = false)", key="solver")
 
 
 def junction_ends(lines, points, bodies):

@@ -18,11 +18,10 @@ import time
 
 import numpy as np
 
-from cablefem.dynamics.junctions import junction_steps
-from cablefem.dynamics.registry import INTEGRATORS
-from cablefem.dynamics.schemes import integrator_options
-from cablefem.dynamics.step_control import StepControl
-from cablefem.errors import ConvergenceError, InputError, OutputError
+from cablefem.dynamics.group import Group, junction_groups
+from cablefem.dynamics.integrator import Integrator
+from cablefem.dynamics.registry import INTEGRATORS, integrator_options
+from cablefem.errors import ConvergenceError, OutputError
 from cablefem.io.checks import check_names, check_run
 from cablefem.io.output import (RowsFile, deferred_signals, failure as write_failure, inside, prepare_folder,
                                 remove_partials, tidy, write_atomic)
@@ -81,8 +80,6 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
     check_names(scene)
     check_run(scene, duration, dt)
     solver = scene.solver
-    if solver.adaptive and solver.integrator != "bdf2":
-        raise InputError("adaptive steps need integrator = \"bdf2\"", key="solver.adaptive")
     duration = float(solver.duration if duration is None else duration)
     dt = float(solver.dt if dt is None else dt)
     out_dir = prepare_folder(out_dir or scene.output.dir)
@@ -92,7 +89,6 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
     summary = {"scene": scene.name, "seabed": scene.seabed.describe(),
                "notes": list(scene.notes) + setting_warnings(scene, dt), "dt": dt, "duration": duration}
     integrators, outputs, status = [], {}, "completed"
-    step_control = StepControl(solver, dt)
     tracker = _Extremes([line.name for line in scene.lines], NetworkRows(scene) if scene.points else None,
                         BendingRows(scene.lines))
     try:
@@ -107,12 +103,12 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
         integrators += [integrator_class(system, X0, boundary_path(scene, line), dt=dt,
                                          anchor=anchor_path(scene, line), **options)
                         for system, line, X0 in zip(systems, scene.lines, states)]
-        junction_steps(scene, integrators)
+        groups = _groups(scene, integrators)
         outputs["frames"] = TimeSeriesWriter(out_dir, scene.name)
         tracker.bending.attach(integrators)
         outputs["table"] = RowsFile(inside(out_dir, "tensions.csv"), _columns(scene, tracker.network, tracker.bending))
         outputs["bar"] = _progress(progress, duration)
-        _advance(scene, integrators, outputs, step_control, tracker, duration, dt)
+        _advance(scene, integrators, groups, outputs, tracker, duration, dt)
     except KeyboardInterrupt:
         status = "interrupted"
         raise
@@ -120,7 +116,7 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
         status = f"stopped: {error}"
         raise
     finally:
-        _finish(summary, status, integrators, outputs, step_control, tracker, start, out_dir,
+        _finish(summary, status, integrators, outputs, tracker, start, out_dir,
                 reraise=status == "completed")
     return summary
 
@@ -137,7 +133,36 @@ def remove_earlier_run(out_dir, name):
             os.unlink(path)
 
 
-def _advance(scene, integrators, outputs, step_control, tracker, duration, dt):
+def _groups(scene, integrators):
+    """The groups that step the lines (``cablefem.dynamics.group``): the strings that meet at junctions
+    together, every other line alone."""
+    groups = junction_groups(scene, integrators)
+    joined = {id(m) for group in groups for m in group.members}
+    return groups + [Group([integ]) for integ in integrators if id(integ) not in joined]
+
+
+def _reactions(integrators, groups):
+    """Every line's (fairlead, anchor) forces [N] in scene order, as its group reports them."""
+    forces = {}
+    for group in groups:
+        forces.update({id(m): f for m, f in zip(group.members, group.reactions())})
+    return [forces[id(integ)] for integ in integrators]
+
+
+def step_times(t, stop, dt):
+    """The times (m,) of fixed steps of dt [s] from t to ``stop``, landing on it: a step within
+    ``Integrator.STRETCH`` of what is left takes all of it (never a sliver before a stop), one
+    under twice dt takes half."""
+    times = []
+    while stop - t > 1e-9 * dt:
+        left = stop - t
+        h = left if left <= dt * (1 + Integrator.STRETCH) else (left / 2 if left < 2 * dt else dt)
+        t = stop if h == left else t + h
+        times.append(t)
+    return np.array(times)
+
+
+def _advance(scene, integrators, groups, outputs, tracker, duration, dt):
     """March every line to ``duration`` [s], writing a row of tensions.csv per step (a batch per
     output interval) and a VTK frame every ``output.every`` [s]. Ctrl-C and SIGTERM take effect
     between output intervals (``deferred_signals``; a compiled march does not see them sooner
@@ -163,27 +188,26 @@ def _advance(scene, integrators, outputs, step_control, tracker, duration, dt):
         return t
 
     tracker.bending.measure(integrators[0].t)
-    t = record([(integrators[0].t, [integ.reactions() for integ in integrators])])
+    t = record([(integrators[0].t, _reactions(integrators, groups))])
     while t < duration - near:
         with deferred_signals():
             stop = min(duration, frame * every)
-            if solver.adaptive:
-                step_control.advance(integrators, stop - t)
-                rows = [(integrators[0].t, [integ.reactions() for integ in integrators])]
-                tracker.bending.measure(rows[-1][0])
-            elif tracker.bending:  # the end moments of a bending line need its state after every step
+            # fixed steps to the next output time, or adaptive ones (``policy.advance``): each group in one call
+            times = np.array([stop]) if solver.adaptive else step_times(t, stop, dt)
+            if tracker.bending and times.size > 1:  # a bending line's end moments: its state after every step
                 rows = []
-                for each in step_control.times(t, stop):
-                    rows += _march(integrators, np.array([each]), lambda rows: table.write(tracker.rows(rows)))
+                for each in times:
+                    rows += _march(integrators, groups, np.array([each]), lambda rows: table.write(tracker.rows(rows)))
                     tracker.bending.measure(rows[-1][0])
-            else:  # fixed steps to the next output time, each line in one call
-                rows = _march(integrators, step_control.times(t, stop), lambda rows: table.write(tracker.rows(rows)))
+            else:
+                rows = _march(integrators, groups, times, lambda rows: table.write(tracker.rows(rows)))
+                tracker.bending.measure(rows[-1][0])
             if bar is not None:
                 bar.update(rows[-1][0] - t)
             t = record(rows)
 
 
-def _finish(summary, status, integrators, outputs, step_control, tracker, start, out_dir, reraise):
+def _finish(summary, status, integrators, outputs, tracker, start, out_dir, reraise):
     """Close the collection and tensions.csv and write summary.json, with SIGINT and SIGTERM held
     until they are done. A failure to write (a full disk) is raised if nothing else failed
     (``reraise``), else that other failure is the one reported."""
@@ -208,8 +232,8 @@ def _finish(summary, status, integrators, outputs, step_control, tracker, start,
             "integrator": stats, "tension_extremes": tracker.as_dict(),
             **({"curvature_extremes": tracker.bending.extremes} if tracker.bending else {}),
             **({"network_extremes": tracker.network.extremes} if tracker.network is not None else {}),
-            "adaptive": {"accepted": step_control.accepted, "rejected": step_control.rejected}
-            if step_control.adaptive else None})
+            "adaptive": {"accepted": sum(s["steps"] for s in stats), "rejected": sum(s["rejected"] for s in stats)}
+            if integrators and integrators[0].adaptive else None})
         summary.setdefault("static_newton_iterations", 0)
         try:
             write_atomic(inside(out_dir, "summary.json"), json.dumps(tidy(summary), indent=1))
@@ -219,20 +243,21 @@ def _finish(summary, status, integrators, outputs, step_control, tracker, start,
         raise errors[0]
 
 
-def _march(integrators, times, write):
-    """Every line marched to ``times``: rows (t, [(fairlead, anchor) force per line]). If a line
+def _march(integrators, groups, times, write):
+    """Every group marched to ``times``: rows (t, [(fairlead, anchor) force per line]). If a group
     fails, the rows every line reached are given to ``write`` before the error goes on."""
-    forces = []
-    try:
-        for integ in integrators:
-            forces.append(integ.march(times))
-    except ConvergenceError as error:
-        last = len(forces) == len(integrators) - 1  # the lines before it have all the rows
-        reached = len(error.forces) if last else 0
-        if reached:
-            write([(times[k], [f[k] for f in forces + [error.forces]]) for k in range(reached)])
-        raise
-    return [(tk, [f[k] for f in forces]) for k, tk in enumerate(times)]
+    forces = {}
+    for g, group in enumerate(groups):
+        try:
+            marched = group.march(times)
+        except ConvergenceError as error:
+            reached = len(error.forces) if g == len(groups) - 1 else 0  # the groups before it have all the rows
+            forces.update({id(m): error.forces[:, k] for k, m in enumerate(group.members)})
+            if reached:
+                write([(times[k], [forces[id(integ)][k] for integ in integrators]) for k in range(reached)])
+            raise
+        forces.update({id(m): marched[:, k] for k, m in enumerate(group.members)})
+    return [(tk, [forces[id(integ)][k] for integ in integrators]) for k, tk in enumerate(times)]
 
 
 def _row(t, forces, extra=()):

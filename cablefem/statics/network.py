@@ -32,7 +32,7 @@ from cablefem.errors import ConvergenceError
 from cablefem.loads.points import PointLoads
 from cablefem.model.network import coupling, rotation, rotation_rates
 from cablefem.statics.continuation import axial_continuation
-from cablefem.statics.newton import newton
+from cablefem.statics.newton import Halving, iterate, newton
 from cablefem.statics.solve import solve_static
 
 
@@ -287,42 +287,12 @@ def solve_network(scene, build, tolerance=1e-8, max_iterations=50):
     net = Network(scene, build)
     states = [None] * len(scene.lines)
     q = net.start()
-    scale, length = net.scale(), net.length()
     places = net.place(q)
     iterations = net.solve_strings(places, states, tolerance, max_iterations)
-    r, J = net.balance(q, states, places)
-    norm = _norm(r, net, scale, length)
-    history = [norm]
-    for outer in range(1, max_iterations + 1):
-        if norm <= tolerance:
-            break
-        try:
-            step = np.linalg.solve(J, -r)
-        except np.linalg.LinAlgError:
-            step = np.linalg.lstsq(J, -r, rcond=None)[0]
-        lam, accepted = 1.0, False
-        for _ in range(12):
-            trial_q = q + lam * step
-            trial_states = list(states)
-            trial_places = net.place(trial_q)
-            try:
-                iterations += net.solve_strings(trial_places, trial_states, tolerance, max_iterations)
-            except ConvergenceError:
-                lam *= 0.5
-                continue
-            r_t, J_t = net.balance(trial_q, trial_states, trial_places)
-            norm_t = _norm(r_t, net, scale, length)
-            if norm_t <= (1.0 - 1e-4 * lam) * norm or np.max(np.abs(lam * step)) <= tolerance * length:
-                accepted = True
-                break
-            lam *= 0.5
-        if not accepted:
-            break
-        q, states, places, r, J, norm = trial_q, trial_states, trial_places, r_t, J_t, norm_t
-        history.append(norm)
-        if np.max(np.abs(lam * step)) <= tolerance * length and lam == 1.0:
-            break
-    converged = norm <= tolerance or (len(history) > 1 and np.max(np.abs(step)) <= tolerance * length)
+    balance = _Balance(net, tolerance, max_iterations)
+    (q, states, places), _, norm, history, converged = iterate(balance, (q, states, places), tolerance,
+                                                               max_iterations, Halving())
+    iterations += balance.iterations
     if not converged:
         raise ConvergenceError(
             f"network statics did not converge: relative residual {norm:.3g} of the balance of "
@@ -334,6 +304,37 @@ def solve_network(scene, build, tolerance=1e-8, max_iterations=50):
     poses = {name: q[net.offsets[name]:net.offsets[name] + 6].copy() for name in net.bodies}
     return NetworkStatics(net.systems, states, points, poses, iterations, norm, history,
                           time.perf_counter() - start)
+
+
+class _Balance:
+    """The coupling unknowns' balance as the statics' Newton solves it (``cablefem.statics.newton.
+    iterate``): a point is (q, the strings' states, the coupling nodes' places); a trial solves the
+    strings with their ends where q puts them (``ConvergenceError`` if one fails); steps are small
+    below the tolerance of the network's length."""
+
+    def __init__(self, net, tolerance, max_iterations):
+        self.net, self.tolerance, self.max_iterations = net, tolerance, max_iterations
+        self.scale, self.length = net.scale(), net.length()
+        self.iterations = 0  # the strings' Newton iterations in the trials
+
+    def evaluate(self, point):
+        r, J = self.net.balance(*point)
+        return r, J, _norm(r, self.net, self.scale, self.length)
+
+    def solve(self, J, r):
+        try:
+            return np.linalg.solve(J, -r)
+        except np.linalg.LinAlgError:
+            return np.linalg.lstsq(J, -r, rcond=None)[0]
+
+    def trial(self, point, step, lam):
+        q = point[0] + lam * step
+        states, places = list(point[1]), self.net.place(q)
+        self.iterations += self.net.solve_strings(places, states, self.tolerance, self.max_iterations)
+        return q, states, places
+
+    def small(self, step):
+        return np.max(np.abs(step)) <= self.tolerance * self.length
 
 
 def _norm(r, net, scale, length):

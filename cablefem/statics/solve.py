@@ -68,7 +68,7 @@ def settle(system, X, tolerance=1e-8, max_iterations=50):
     into its arch, slack chain folding). Drag coefficients below 1.2 normal and 0.5 tangential
     are raised to them for the settling; at most ``max_iterations`` rounds of ``SETTLE_CHUNK``. Same
     returns as ``newton``."""
-    from cablefem.dynamics.schemes import BDF2
+    from cablefem.dynamics.bdf2 import BDF2
     from cablefem.loads.added_mass import AddedMass
     from cablefem.loads.drag import Drag
     from cablefem.fem.system import LineSystem

@@ -37,7 +37,7 @@ def run(scene, duration, dt_out=0.05, dt=None, integrator="generalized-alpha", *
     along the line (m,) (< 0: a part pushes, as a line with EI does and MoorDyn's lines do not); the
     wall time [s] of the march calls (the outputs read between them not counted)."""
     from cablefem.dynamics.registry import INTEGRATORS
-    from cablefem.dynamics.schemes import integrator_options
+    from cablefem.dynamics.registry import integrator_options
     from cablefem.model.network import boundary_path
 
     system, X, out = statics(scene)

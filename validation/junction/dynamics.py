@@ -12,9 +12,9 @@ from cablefem.model.motion import fairlead_motion
 from cablefem.model.network import dynamic_lines
 from cablefem.model.network import anchor_path, boundary_path
 from cablefem.fem.system import build_system
-from cablefem.runs.run import junction_steps
+from cablefem.dynamics.group import junction_groups
 from cablefem.statics.scene import start_states
-from cablefem.dynamics.schemes import integrator_options
+from cablefem.dynamics.registry import integrator_options
 
 from validation.junction.inputs import (CASES, CLUMP, FILE_ELEMENTS, IC_DTM, ORDER, case_duration, moordyn_text,
                                         scene_of, toml_text)
@@ -80,11 +80,11 @@ def run_cablefem(case, factor, dt, duration, order=ORDER, compiled=True, **chang
     options = {**integrator_options(scene.solver), "compiled": compiled}
     integrators = [INTEGRATORS["bdf2"](s, X, boundary_path(scene, line), dt=dt, anchor=anchor_path(scene, line),
                                        **options) for s, line, X in zip(systems, scene.lines, states)]
-    group = junction_steps(scene, integrators)
+    group = junction_groups(scene, integrators)[0]
     initialised = time.perf_counter()
     names = [line.name for line in scene.lines]
     upper, leg1, leg2 = (integrators[names.index(n)] for n in ("upper", "leg1", "leg2"))
-    k = group.integrators.index(leg1)
+    k = group.members.index(leg1)
     junction_dof = group.ends[k][0][3]
     steps = int(round(duration / dt))
     t = np.arange(steps + 1) * dt
@@ -103,8 +103,8 @@ def run_cablefem(case, factor, dt, duration, order=ORDER, compiled=True, **chang
     finished = time.perf_counter()
     return {"t": t, "fairlead": series[:, 0], "anchor1": series[:, 1], "anchor2": series[:, 2],
             "junction": series[:, 3:], "wall_time_s": finished - start, "init_time_s": initialised - start,
-            "step_time_s": finished - initialised, "newton_iterations": group.newton_iterations,
-            "halvings": group.halvings, "elements": {n: int(round(FILE_ELEMENTS[n] * factor)) for n in names}, "dt": dt,
+            "step_time_s": finished - initialised, "newton_iterations": int(group.members[0].newton_iterations),
+            "halvings": int(group.members[0].rejected), "elements": {n: int(round(FILE_ELEMENTS[n] * factor)) for n in names}, "dt": dt,
             "order": order}
 
 

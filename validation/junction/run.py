@@ -1,5 +1,5 @@
 """cablefem against MoorDyn-C on a crowfoot: one line from a coupled fairlead down to a free junction
-carrying a clump, two legs from the junction to anchors (issue 18, ``cablefem.dynamics.junctions``).
+carrying a clump, two legs from the junction to anchors (issue 18, ``cablefem.dynamics.group``).
 
 Run ``python -m validation.junction.run [--fast] [--out DIR]``; ``run(fast=True)`` returns the
 numbers tests/test_validation_junction.py asserts on. The README has the case, the alignment of

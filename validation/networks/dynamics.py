@@ -30,7 +30,7 @@ from cablefem.model.network import BodyPointPath
 from cablefem.model.network import anchor_path, boundary_path
 from cablefem.fem.system import build_system
 from cablefem.statics.scene import start_states
-from cablefem.dynamics.schemes import integrator_options
+from cablefem.dynamics.registry import integrator_options
 from validation.moordyn import peer
 
 

@@ -155,7 +155,8 @@ def vibration(n, periods=5, steps_per_period=64):
     """The neutrally buoyant cantilever of ``BEAM`` (clamped, free end) released from its first mode at
     a tip amplitude of 1e-4 L: its first frequency from the eigenproblem against the closed form, and
     the period of its tip from a run of each integrator (compiled) against both."""
-    from cablefem.dynamics.schemes import BDF2, GeneralizedAlpha
+    from cablefem.dynamics.bdf2 import BDF2
+    from cablefem.dynamics.generalized_alpha import GeneralizedAlpha
 
     b, m = BEAM, neutral_mass(BEAM["diameter"])
     system = line_system(n, b["L"], b["EI"], b["EA"], m, origin=IN_WATER, diameter=b["diameter"])

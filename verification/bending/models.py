@@ -110,7 +110,7 @@ def first_mode(system, X, axis=2):
 
 def free_vibration(system, X0, integrator, dt, duration, **options):
     """The tip's displacement along z (m,) [m] at each step of a free vibration from rest at X0 (N, 3)
-    with ``integrator`` (a class of ``cablefem.dynamics.schemes``), compiled; and the times (m,)."""
+    with ``integrator`` (a class of ``cablefem.dynamics.registry.INTEGRATORS``), compiled; and the times (m,)."""
     fixed = system.line.fairlead.copy()
     zero = np.zeros(3)
     integ = integrator(system, X0, lambda t: (fixed, zero, zero), dt=dt, tolerance=1e-10, **options)

@@ -104,7 +104,7 @@ def dynamic_run(seabed, duration, dt=0.01, kind="flat", count_projection=False, 
     False): (CPU s, wall s of the time steps, integrator, CPU s spent in seabed.project and its
     number of calls when ``count_projection``). Counting needs the calls in Python: those runs
     take the per-step Python path (``cablefem.compiled.steps`` projects inside its compiled loop)."""
-    from cablefem.dynamics.step_control import StepControl
+    from cablefem.runs.run import step_times
     from cablefem.model.builtin import flume_scene
     from cablefem.study import start_line
 
@@ -112,7 +112,7 @@ def dynamic_run(seabed, duration, dt=0.01, kind="flat", count_projection=False, 
     integrator = start_line(scene, integrator="bdf2", newton="modified" if modified_newton else "full")
     spent = [0.0, 0]
     if count_projection:  # an instance attribute shadows the method for this run only
-        integrator.marcher = None
+        integrator.stepper().packer = None
         project = seabed.project
 
         def counted(*args, **kwargs):
@@ -124,7 +124,7 @@ def dynamic_run(seabed, duration, dt=0.01, kind="flat", count_projection=False, 
         seabed.project = counted
     try:
         start = _clock()
-        integrator.march(StepControl(scene.solver, dt).times(0.0, duration))
+        integrator.march(step_times(0.0, duration, dt))
         cpu, wall = _since(start)
     finally:
         if count_projection:

@@ -59,11 +59,11 @@ def run_cablefem_scene(scene):
     a run whose Newton fails even at the smallest step has ``failed`` (the message) instead."""
     from cablefem.dynamics.registry import INTEGRATORS
     from cablefem.errors import ConvergenceError
-    from cablefem.dynamics.step_control import StepControl
+    from cablefem.runs.run import step_times
     from cablefem.model.network import boundary_path
     from cablefem.fem.system import build_system
     from cablefem.statics.scene import start_states
-    from cablefem.dynamics.schemes import integrator_options
+    from cablefem.dynamics.registry import integrator_options
 
     solver, line = scene.solver, scene.lines[0]
     start = time.perf_counter()
@@ -71,18 +71,11 @@ def run_cablefem_scene(scene):
     (X0,), _ = start_states(scene, systems=[system])
     integ = INTEGRATORS[solver.integrator](system, X0, boundary_path(scene, line), dt=solver.dt,
                                            **integrator_options(solver))
-    control = StepControl(solver, solver.dt)
     times, tensions = [integ.t], [np.linalg.norm(integ.reactions()[0])]
     try:
-        if solver.adaptive:
-            while integ.t < solver.duration - 1e-9 * solver.dt:
-                control.advance([integ], solver.duration - integ.t)
-                times.append(integ.t)
-                tensions.append(np.linalg.norm(integ.reactions()[0]))
-        else:
-            steps = control.times(integ.t, solver.duration)
-            times.extend(steps)
-            tensions.extend(np.linalg.norm(integ.march(steps)[:, 0], axis=1))
+        steps = step_times(integ.t, solver.duration, scene.output.every if solver.adaptive else solver.dt)
+        times.extend(steps)
+        tensions.extend(np.linalg.norm(integ.march(steps)[:, 0], axis=1))
     except ConvergenceError as error:
         return {"failed": str(error), "wall_time_s": time.perf_counter() - start}
     wall = time.perf_counter() - start
