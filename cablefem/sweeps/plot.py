@@ -16,6 +16,7 @@ KEY_UNITS = {
     ("environment", "current"): "m/s",
     ("line_types.NAME", "diameter"): "m", ("line_types.NAME", "mass"): "kg/m", ("line_types.NAME", "EA"): "N",
     ("line_types.NAME", "damping"): "s", ("line_types.NAME", "nominal_diameter"): "m",
+    ("line_types.NAME", "EI"): "N m²",
     ("lines", "anchor"): "m", ("lines", "fairlead"): "m", ("lines", "segments.length"): "m",
     ("seabed", "depth"): "m", ("seabed", "point"): "m", ("seabed", "slope_deg"): "deg",
     ("seabed", "azimuth_deg"): "deg", ("seabed", "stiffness"): "N/m^3", ("seabed", "damping"): "N s/m^3",
