@@ -42,11 +42,11 @@ def cmd_static(args):
     for note in scene.notes:
         print(f"  note: {note}")
     print(f"{'line':<12} {'fairlead T [N]':>15} {'anchor T [N]':>15} {'touchdown s [m]':>16} "
-          f"{'iters':>6} {'residual':>9} {'step/L':>9}")
+          f"{'iters':>6} {'residual':>9} {'step/L':>9}  strategy")
     for rep, res in zip(reports, results):
         td = "-" if rep.touchdown_s is None else f"{rep.touchdown_s:.3f}"
         print(f"{rep.name:<12} {rep.fairlead_tension:15.6e} {rep.anchor_tension:15.6e} {td:>16} "
-              f"{res.iterations:6d} {res.residual:9.2e} {res.increment:9.2e}")
+              f"{res.iterations:6d} {res.residual:9.2e} {res.increment:9.2e}  {res.strategy}")
     fields = network_json(scene, reports, network) if scene.points or scene.bodies else {}
     for name, body in fields.get("bodies", {}).items():
         pose = body["position"] + body["rotation_deg"]
@@ -54,13 +54,13 @@ def cmd_static(args):
               + " ".join(f"{x:.6e}" for x in body["force"]) + " [N]; moment "
               + " ".join(f"{x:.6e}" for x in body["moment"]) + " [N m]")
     if network is not None:
-        print(f"network: {len(network.history) - 1} outer Newton iterations, balance residual {network.residual:.2e}")
+        print(f"network: {len(network.history) - 1} outer Newton iterations ({network.outer}) on its junctions and "
+              f"free bodies, balance residual {network.residual:.2e} (its strings' iterations are in their rows)")
     for rep, res in zip(reports, results):
         if rep.soil is not None:
             mudline = rep.soil["mudline_tension"]
             print(f"{rep.name:<12} padeye T {rep.soil['padeye_tension']:.6e} N, mudline T "
-                  f"{'-' if mudline is None else f'{mudline:.6e} N'}, embedded {rep.soil['embedded_length']:.3f} m; "
-                  f"{res.strategy}")
+                  f"{'-' if mudline is None else f'{mudline:.6e} N'}, embedded {rep.soil['embedded_length']:.3f} m")
     print(f"{iterations} Newton iterations in {wall:.3f} s")
     if args.json:
         write_json(args.json, {**fields,
@@ -72,6 +72,9 @@ def cmd_static(args):
             "notes": list(scene.notes),
             "residuals": [res.residual for res in results],
             "scale_free_residuals": [res.increment for res in results],
+            "strategies": [res.strategy for res in results],
+            "line_iterations": [res.iterations for res in results],
+            "network_iterations": None if network is None else len(network.history) - 1,
         })
         print(f"wrote {args.json}")
 
@@ -121,7 +124,7 @@ def cmd_sweep(args):
 
 
 def cmd_plot(args):
-    """``cablefem plot OUT [--png FILE] [--y STAT --x KEY --by KEY]``: a run, or a sweep's table."""
+    """``cablefem plot OUT [--png FILE] [--elevation] [--y STAT --x KEY --by KEY]``: a run, or a sweep's table."""
     from cablefem.io.output import prepare_file
 
     if args.png:
@@ -133,7 +136,7 @@ def cmd_plot(args):
     else:
         from cablefem.post import plot_tensions
 
-        path = plot_tensions(args.out, args.png)
+        path = plot_tensions(args.out, args.png, elevation=args.elevation)
     print(f"wrote {path}")
 
 
@@ -176,6 +179,8 @@ def build_parser():
     plot = commands.add_parser("plot", help="tension against time of a run, or a statistic of a sweep")
     plot.add_argument("out", metavar="OUT", help="output folder of a run or of a sweep (or a sweep's table)")
     plot.add_argument("--png", metavar="FILE", help="image to write (default: OUT/tensions.png, OUT/sweep.png)")
+    plot.add_argument("--elevation", action="store_true", help="a run in waves: the elevation at the origin "
+                      "above the tensions")
     plot.add_argument("--y", metavar="STAT", help="sweep: the column to draw (default: the first line's "
                       "fairlead_tension_max, or fairlead_tension for static cases)")
     plot.add_argument("--x", metavar="KEY", help="sweep: the parameter along x (default: the first varied one)")

@@ -59,16 +59,25 @@ def read_tensions(out_dir):
     return {name: values[:, k] for k, name in enumerate(header)}
 
 
-def plot_tensions(out_dir, png=None):
-    """Fairlead and anchor tension [N] against time of a run, as a PNG; returns its path."""
+def plot_tensions(out_dir, png=None, elevation=False):
+    """Fairlead and anchor tension [N] against time of a run, as a PNG; with ``elevation`` (a run in
+    waves) the elevation at the origin [m] above them, on the same time axis; returns its path."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     data = read_tensions(out_dir)
+    if elevation and "eta" not in data:
+        raise InputError("no elevation in tensions.csv: the run had no [waves]", file=out_dir)
     png = png or os.path.join(out_dir, "tensions.png")
-    fig, ax = plt.subplots(figsize=(8, 4))
+    if elevation:
+        fig, (top, ax) = plt.subplots(2, 1, figsize=(8, 6), sharex=True, gridspec_kw={"height_ratios": [1, 2]})
+        top.plot(data["t"], data["eta"], color="tab:blue")
+        top.set_ylabel("elevation at the origin [m]")
+        top.grid(True, alpha=0.3)
+    else:
+        fig, ax = plt.subplots(figsize=(8, 4))
     for name, values in data.items():
         if name.endswith("fairlead_tension") or name.endswith("anchor_tension"):
             ax.plot(data["t"], values / 1e3, label=name.replace("_", " "))
@@ -88,6 +97,8 @@ def collection(out_dir):
     if not os.path.isdir(out_dir):
         raise InputError("no such folder", file=out_dir)
     found = sorted(f for f in os.listdir(out_dir) if f.endswith(".pvd"))
+    if len(found) > 1 and "waves.pvd" in found:  # a run in waves: the free surface's collection
+        found.remove("waves.pvd")
     try:
         with open(os.path.join(out_dir, "summary.json"), encoding="utf-8") as handle:
             named = f"{json.load(handle)['scene']}.pvd"
@@ -117,6 +128,17 @@ def render_frame(out_dir, index=-1, png=None, scalars="tension", clim=None, came
     return render_run(out_dir, frames=[index], png=png, scalars=scalars, clim=clim, camera=camera, size=size)[0]
 
 
+def load_surface(out_dir):
+    """The free surface's frames of a run in waves (a list of pyvista meshes, one per line frame:
+    ``cablefem.runs.surface``), or None."""
+    import pyvista
+
+    path = os.path.join(out_dir, "waves.pvd")
+    if not os.path.isfile(path) or collection(out_dir) == path:
+        return None
+    return [pyvista.read(f) for f in read_collection(path)[1]]
+
+
 def render_run(out_dir, frames=None, png=None, png_dir=None, animation=None, scalars="tension", clim=None,
                camera="side", size=None, fps=10):
     """Pictures of a run's frames ``frames`` (indices, negative from the end; default all): one PNG
@@ -128,6 +150,7 @@ def render_run(out_dir, frames=None, png=None, png_dir=None, animation=None, sca
     position [(position), (focal point), (view up)]); ``size`` (width, height) of a picture [px]
     (default 1600 wide, as tall as the framed scene needs). Returns the paths written."""
     times, meshes, seabed = load_run(out_dir)
+    surface = load_surface(out_dir)
     name = os.path.splitext(os.path.basename(collection(out_dir)))[0]
     picked = _frame_indices(frames, len(meshes), out_dir)
     meshes = [_parts(mesh) for mesh in meshes]  # (the lines, the network's points, its bodies' segments)
@@ -140,7 +163,7 @@ def render_run(out_dir, frames=None, png=None, png_dir=None, animation=None, sca
     view = _View(camera, framed + ([seabed.points] if seabed is not None else []), size)
 
     def picture(k):
-        scene = view.scene(seabed, meshes[k], values[k] * factor, limits)
+        scene = view.scene(seabed, meshes[k], values[k] * factor, limits, None if surface is None else surface[k])
         return _picture(scene, f"{name}, t = {times[k]:.2f} s", label, limits, view.metres_per_pixel())
 
     try:
@@ -267,10 +290,11 @@ class _View:
         self.size = (width, scene)
         self.plotter = None
 
-    def scene(self, seabed, parts, values, limits):
+    def scene(self, seabed, parts, values, limits, surface=None):
         """The scene's picture (height, width, 3): the frame's ``parts`` (``_parts``), its lines
         coloured by ``values``, its points black and its bodies' segments grey, over ``seabed``
-        (the seabed and the camera set on the first call; ``close`` when done)."""
+        (the seabed and the camera set on the first call; ``close`` when done), under the free
+        ``surface`` of a run in waves (blue, translucent)."""
         import pyvista
 
         if self.plotter is None:
@@ -289,6 +313,8 @@ class _View:
                                                           render_points_as_spheres=True))):
             if part is not None:
                 self.plotter.add_mesh(part, name=name, lighting=False, **style)
+        if surface is not None:
+            self.plotter.add_mesh(surface, name="surface", color="steelblue", opacity=0.35, smooth_shading=True)
         self._place(self.plotter)
         return self.plotter.screenshot(return_img=True)
 

@@ -25,7 +25,7 @@ from cablefem.loads import State
 from cablefem.loads.bending import Bending, curvature
 from cablefem.model.line import Line, LineType, Segment
 from cablefem.model.scene import Contact, Environment
-from cablefem.runs.results import curvature_peak, node_curvature
+from cablefem.runs.curvature import curvature_peak, node_curvature
 from cablefem.statics.newton import newton
 from cablefem.statics.solve import solve_static
 

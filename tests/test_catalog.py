@@ -17,14 +17,26 @@ from cablefem.loads.current import CurrentProfile
 from cablefem.loads.friction import IsotropicFriction
 from cablefem.model.scene import Contact, Friction
 from cablefem.fem.system import LineSystem
+from cablefem.loads.morison import Morison
+from cablefem.waves import Sea
 
+from rope_cases import rope_state, rope_system
 from test_loads import (ROPE, assert_tangent_matches_finite_differences, line_state, soil_state, soil_system,
                         system_with_all_loads)
 
-#: every catalog load, the two that see the current once more in a current varying with depth, and
-#: the contact and its friction with the seabed's damper acting on points moving out too
+#: the rope's laws besides its table with a constant BA (``tests/rope_cases.py``), and MoorDyn-C's slack law
+ROPE_VARIANTS = ["damping_table", "viscoelastic", "load_dependent", "syrope", "syrope_exp", "slack"]
+
+#: every catalog load, the two that see the current once more in a current varying with depth, the
+#: contact and its friction with the seabed's damper acting on points moving out too, in waves (the
+#: Morison load is the line's in waves; points see the waves too), and the rope's laws
 NAMES = [spec.name for spec in catalog.CATALOG] + ["drag+profile", "points+profile", "contact+opening",
-                                                   "friction+opening"]
+                                                   "friction+opening", "morison+profile", "points+waves",
+                                                   "points+waves-profile"] + [f"rope+{kind}" for kind in ROPE_VARIANTS]
+#: the step of the tests' evaluations [s]: a rope's slow strain steps over it (``cablefem.loads.rope``)
+H = 0.05
+#: two components over the test line (its top at the surface: some points there are above the crests)
+SEA = Sea.from_components([1.5, 0.6], [2 * np.pi / 9.0, 1.1], [0.35, -0.5], [0.4, 2.0], 100.0)
 #: a sheared current over the test line's heights (about -100 m to the surface, the clump near the
 #: seabed and the buoy at the surface both on a sloping piece), bending at four heights
 PROFILE = CurrentProfile.from_arrays([-130.0, -70.0, -30.0, 5.0],
@@ -49,7 +61,11 @@ def one_load_system(name, order):
     name, _, variant = name.partition("+")
     if name == "bending" and order != "hermite":
         pytest.skip("bending needs Hermite elements (a line type with EI > 0 is refused on Lagrange ones)")
-    profile = variant == "profile"
+    if name == "rope":
+        system = rope_system("table" if variant in ("", "slack") else variant, order, slack=variant == "slack")
+        system.loads = [system.load("rope")]
+        return system
+    profile = variant in ("profile", "waves-profile")
     system = (soil_system(SEABED, order) if name == "soil"
               else system_with_all_loads(SEABED, LAW, order, profile=PROFILE if profile else None,
                                          line_type=BENT_ROPE if name == "bending" else ROPE))
@@ -60,7 +76,14 @@ def one_load_system(name, order):
         joints = ((1, Joint("clump", mass=2e3, volume=0.3, CdA=1.5, Ca=1.0)),
                   (2, Joint("buoy", mass=100.0, volume=2.0, CdA=2.0, Ca=0.5)))
         line = replace(line, segments=(half, half), joints=joints, prescribed=(True, False))
-        system = LineSystem(line, SEABED, Contact(stiffness=0.0), system.environment)
+        environment = replace(system.environment, waves=SEA if variant.startswith("waves") else None)
+        system = LineSystem(line, SEABED, Contact(stiffness=0.0), environment, dynamic=True)
+    if name == "morison":
+        env, props = system.environment, system.props
+        system.loads.append(Morison(props["diameter"], np.full(len(props["diameter"]), 2.0),
+                                    np.full(len(props["diameter"]), 0.4), np.full(len(props["diameter"]), 1.0),
+                                    np.full(len(props["diameter"]), 0.5), env.water_density, SEA, env.current,
+                                    profile=env.current_profile))
     # the last of each: the test's own contact (the catalog's has no stiffness here)
     system.loads = [[load for load in system.loads if catalog.spec_of(load).name == wanted][-1]
                     for wanted in catalog.spec(name).reads + (name,)]
@@ -70,6 +93,9 @@ def one_load_system(name, order):
 
 def load_state(system, name, rng):
     """(state, X, V, A) of a test state for load ``name``, away from its kinks."""
+    if name.startswith("rope"):
+        X, V, A = rope_state(system, rng)
+        return system.state(X, V, A), X, V, A
     return soil_state(system, rng) if name == "soil" else line_state(system, rng, LAW)
 
 
@@ -77,7 +103,7 @@ def reference(system, X, V, A, v_x, a_x):
     """Rows M A + G and the dense free tangent K + a_x M of the numpy face."""
     fem = system.fem
     M = fem.vector_mass(system.props["mass"], free_only=False)
-    R, blocks = system.evaluate(system.state(X, V, A), True, v_x, a_x)
+    R, blocks = system.evaluate(system.state(X, V, A, inv_h=1.0 / H), True, v_x, a_x)
     K = system.matrix(blocks) + a_x * fem.vector_mass(system.props["mass"])
     return R + (M @ A.ravel()).reshape(A.shape), K.toarray()
 
@@ -89,7 +115,7 @@ def test_compiled_face_equals_the_numpy_face(name, order, rng):
     state, X, V, A = load_state(system, name, rng)
     fused = FusedEvaluator.for_system(system, system.props["mass"])
     rows_ref, K_ref = reference(system, X, V, A, 150.0, 2.2e4)
-    rows, band = fused.evaluate(X, V, A, 150.0, 2.2e4)
+    rows, band = fused.evaluate(X, V, A, 150.0, 2.2e4, h=H)
     # the same sums in another order: equal to round-off
     np.testing.assert_allclose(rows, rows_ref, rtol=0, atol=1e-12 * np.abs(rows_ref).max())
     np.testing.assert_allclose(fused.dense(band), K_ref, rtol=0, atol=1e-12 * np.abs(K_ref).max())
@@ -181,13 +207,13 @@ def test_the_point_loops_call_only_the_lines_loads_and_the_others_would_add_noth
     names = {name, *catalog.spec(name).reads}
     np.testing.assert_array_equal(pts.full_loads, [spec.name in names for spec in layout.full])
     np.testing.assert_array_equal(pts.reduced_loads, [spec.name in names for spec in layout.reduced])
-    rows, band = (x.copy() for x in fused.evaluate(X, V, A, 150.0, 2.2e4))
+    rows, band = (x.copy() for x in fused.evaluate(X, V, A, 150.0, 2.2e4, h=H))
     # every kernel called, as before the masks: a load the line has not returns at its flag
     fused.points = pts._replace(full_loads=np.ones_like(pts.full_loads), reduced_loads=np.ones_like(pts.reduced_loads))
-    every_rows, every_band = fused.evaluate(X, V, A, 150.0, 2.2e4)
+    every_rows, every_band = fused.evaluate(X, V, A, 150.0, 2.2e4, h=H)
     assert np.array_equal(rows, every_rows) and np.array_equal(band, every_band)
-    # only a load that keeps history is committed (the soil's, at the full points)
-    assert system.kept_history() == ({"full"} if name == "soil" else set())
+    # only a load that keeps history is committed (the soil's at the full points, the rope's at the reduced)
+    assert system.kept_history() == {"soil": {"full"}, "rope": {"reduced"}}.get(name, set())
 
 
 def test_an_opening_damper_pulls_points_lifting_off_and_friction_reads_its_magnitude(rng):

@@ -14,6 +14,11 @@ from bad_input import BASE_MOORDYN, GRID_C, Case, assert_refused, edit, toml_cas
 # -------------------------------------------------------------- MoorDyn v2 input files
 
 ROW_CHAIN = "1     chain       1        2        500.0     20       -"
+POLYESTER = "polyester  0.160    25.0     2.0e8     -0.8       0.0   2.0   1.0   0.4    0.0"
+#: a polyester strain-tension curve file (three header lines, MoorDyn-C's layout) and a SYROPE file
+CURVE = "--- polyester ---\nStrain Tension\n(-) (N)\n0.0 0.0\n0.01 5e6\n0.02 1.2e7\n0.05 4e7\n"
+SYROPE_FILE = "owc.txt OWC\nLINEAR WCType\n1.25e8 k1\n0.0 k2\n"
+OWC = "--- OWC ---\nStrain Tension\n(-) (N)\n0.0 0.0\n0.01 1e6\n0.02 2.2e6\n0.05 6e6\n"
 
 
 def moordyn(name, reason, edits=None, text=None, files=None, file_name="mooring.dat"):
@@ -43,7 +48,7 @@ MOORDYN = [
     moordyn("unstrlen-huge", "LINES.1.UnstrLen: 1e+300 m is beyond", {ROW_CHAIN: ROW_CHAIN.replace("500.0", "1e300")}),
     moordyn("EA-1e308", "line 6: LINE TYPES.chain.EA: 1e+308 N is beyond the sane limit", {"1.23e9": "1e308"}),
     moordyn("EA-inf", "LINE TYPES.chain.EA: must be finite", {"1.23e9": "inf   "}),
-    moordyn("EA-nonlinear", "'1.23e9|5e8' is not supported: give constant EA and BA", {"1.23e9": "1.23e9|5e8"}),
+    moordyn("EA-dynamic-below-static", "the dynamic stiffness must exceed the static EA", {"1.23e9": "1.23e9|5e8"}),
     moordyn("diam-nan", "LINE TYPES.chain.Diam: must be finite", {"0.216 ": "nan   "}),
     moordyn("diam-huge", "LINE TYPES.chain.Diam: 1000 m is beyond", {"0.216 ": "1e3   "}),
     moordyn("mass-negative", "LINE TYPES.chain.MassDen: must be > 0", {"286.6": "-286.6"}),
@@ -84,6 +89,30 @@ MOORDYN = [
             {"850.0     WtrDpth": "bathy.txt SeafloorFile"}, files={"bathy.txt": GRID_C.replace("-150", "10")}),
     moordyn("hidden-file-name", "name (from the file name): must not start with '.'", file_name=".mooring.dat"),
     moordyn("long-file-name", "name (from the file name): is 240 bytes long", file_name="m" * 240 + ".dat"),
+    *[moordyn(name, reason, {POLYESTER: POLYESTER.replace("2.0e8     -0.8", entry)}, files=files)
+      for name, reason, entry, files in (
+          ("curve-missing", "line 7: LINE TYPES.polyester.EA: file not found", "poly.txt  -0.8", {}),
+          ("curve-not-monotonic", "LINE TYPES.polyester.EA (poly.txt).tension: not monotonic",
+           "poly.txt  -0.8", {"poly.txt": CURVE.replace("1.2e7", "4e6")}),
+          ("curve-row", "line 7: LINE TYPES.polyester.EA: poly.txt line 5: expected two numbers 'x y', got '0.01'",
+           "poly.txt  -0.8", {"poly.txt": CURVE.replace("0.01 5e6", "0.01")}),
+          ("ba-curve-at-zero", "BA/-zeta (ba.txt).tension: the tension at zero strain_rate must be 0",
+           "poly.txt  ba.txt", {"poly.txt": CURVE, "ba.txt": "h\nh\nh\n-0.1 -2e4\n-0.01 5e3\n0.1 2e4\n"}),
+          ("four-bars", "line 7: LINE TYPES.polyester.EA: at most 3 values separated by '|'", "2e8|3e8|1e8|0.4 -0.8", {}),
+          ("ba-bars", "line 7: LINE TYPES.polyester.BA/-zeta: '1|2|3': BA has at most", "2e8|3e8|0.4 1|2|3", {}),
+          ("syrope-two", "a SYROPE entry is 'SYROPE:file|EA_Dc|EA_D_Lm'", "SYROPE:s.dat|1e8 1e9", {}),
+          ("syrope-file-k1", "line 7: LINE TYPES.polyester.EA: s.dat: missing k1", "SYROPE:s.dat|1.5e8|20 5e10",
+           {"s.dat": "poly.txt OWC\nLINEAR WCType\n0.0 k2\n", "poly.txt": CURVE}),
+          ("syrope-without-ic", "line 18: LINES.2: line type 'polyester' is a SYROPE rope: its segment needs its "
+           "initial condition", "SYROPE:s.dat|1.5e8|20 5e10", {"s.dat": SYROPE_FILE, "owc.txt": OWC}),
+      )],
+    moordyn("ic-without-syrope", "line 22: SYROPE IC: a SYROPE IC section, but no line type is a SYROPE rope",
+            {"---------------------- OPTIONS": "--- SYROPE IC ---\nLine Tmax0 Tmean0\n(-) (N) (N)\n2 1e6 5e5\n"
+             "---------------------- OPTIONS"}),
+    moordyn("ic-unknown-line", "SYROPE IC.7: no line '7' in LINES",
+            {POLYESTER: POLYESTER.replace("2.0e8     -0.8", "SYROPE:s.dat|1.5e8|20 5e10"),
+             "---------------------- OPTIONS": "--- SYROPE IC ---\nLine Tmax0 Tmean0\n(-) (N) (N)\n7 1e6 5e5\n"
+             "---------------------- OPTIONS"}, files={"s.dat": SYROPE_FILE, "owc.txt": OWC}),
 ]
 
 # -------------------------------------------------------------- seabed files behind a TOML scene

@@ -65,9 +65,9 @@ LINE_TYPE = [
 ]
 
 ENVIRONMENT = [
-    *values("water_density", "water_density = 1025.0", ["1e300", "-1025.0", "0.0"],
-            ["beyond the sane limit", "must be > 0", "must be > 0"], "environment"),
-    *values("gravity", "gravity = 9.81", ["1e10", "-9.81"], ["beyond the sane limit", "must be > 0"],
+    *values("water_density", "water_density = 1025.0", ["1e300", "-1025.0"],
+            ["beyond the sane limit", "must be >= 0"], "environment"),
+    *values("gravity", "gravity = 9.81", ["1e10", "-9.81"], ["beyond the sane limit", "must be >= 0"],
             "environment"),
     toml_case("current-fast", "environment.current[0]: 10000 m/s is beyond the sane limit",
               {"current = [0.0, 0.0, 0.0]": "current = [1e4, 0.0, 0.0]"}),
@@ -186,7 +186,71 @@ MOTION = [
               motion('kind = "harmonic"\namplitude = [1.0, 0.0, 0.0]\nperiod = -6.0')),
 ]
 
-CASES = SYNTAX + LINE_TYPE + ENVIRONMENT + LINES + SEABED_CASES + FRICTION_SOLVER + MOTION
+EA = "EA = 3.15e9"
+DAMPING = "damping = 0.001"
+CHAIN_SEGMENT = '{ type = "chain", length = 635.0, elements = 40 }'
+OWC = "EA = { strain = [0.0, 0.01, 0.02, 0.04], tension = [0.0, 1e6, 2.2e6, 5e6] }"
+SYROPE = OWC + "\nEA_dynamic = 1.5e8\nEA_dynamic_slope = 20.0\nBA = 5e10\nsyrope = { working_curve = \"linear\", k1 = 1.25e8, k2 = 0.0 }"
+IC = '{ type = "chain", length = 635.0, elements = 40, syrope = { Tmax = 2e6, Tmean = 1e6 } }'
+
+
+def law(name, reason, line_type, segment=None):
+    """A case whose chain line type has ``line_type`` instead of EA and damping (its segment ``segment``)."""
+    edits = {EA: line_type, DAMPING: ""}
+    if segment is not None:
+        edits[CHAIN_SEGMENT] = segment
+    return toml_case(name, reason, edits)
+
+
+AXIAL = [
+    law("table-strain-not-increasing", "line_types.chain.EA.strain: not monotonic: strain must strictly increase",
+        "EA = { strain = [0.0, 0.02, 0.01], tension = [0.0, 1e6, 2e6] }"),
+    law("table-tension-falling", "line_types.chain.EA.tension: not monotonic: tension must strictly increase, but "
+        "row 2 has 500000 after 1e+06", "EA = { strain = [0.0, 0.01, 0.02], tension = [0.0, 1e6, 5e5] }"),
+    law("table-tension-flat", "not monotonic", "EA = { strain = [0.0, 0.01, 0.02], tension = [0.0, 1e6, 1e6] }"),
+    law("table-one-row", "line_types.chain.EA: a table needs at least 2 rows, got 1",
+        "EA = { strain = [0.01], tension = [1e6] }"),
+    law("table-lengths", "3 strain values but 2 tension values", "EA = { strain = [0.0, 0.01, 0.02], tension = [0.0, 1e6] }"),
+    law("table-negative-strain", "EA.strain: strain must be >= 0", "EA = { strain = [-0.01, 0.01], tension = [0.0, 1e6] }"),
+    law("table-pull-at-zero", "EA.tension: the tension at zero strain must be 0",
+        "EA = { strain = [0.0, 0.01], tension = [1e5, 1e6] }"),
+    law("table-too-long", "at most 32 rows", "EA = { strain = [" + ", ".join(str(0.001 * i) for i in range(40))
+        + "], tension = [" + ", ".join(str(1e5 * i) for i in range(40)) + "] }"),
+    law("table-nan", "EA.tension[1]: must be finite", "EA = { strain = [0.0, 0.01], tension = [0.0, nan] }"),
+    law("table-unknown-key", "line_types.chain.EA.stress: unknown key", "EA = { strain = [0.0, 0.01], stress = [0.0, 1e6] }"),
+    law("ba-and-damping", "line_types.chain.BA: give the internal damping once", "EA = 3.15e9\nBA = 1e6\ndamping = 0.1"),
+    law("ba-table-at-zero", "BA.tension: the tension at zero strain_rate must be 0",
+        "EA = 3.15e9\nBA = { strain_rate = [-0.1, -0.05, 0.1], tension = [-1e4, 5e3, 2e4] }"),
+    law("dynamic-below-static", "line_types.chain.EA_dynamic: the dynamic stiffness must exceed the static EA",
+        "EA = 3.15e9\nEA_dynamic = 3.0e9\nBA = 1e9"),
+    law("dynamic-slope-alone", "line_types.chain.EA_dynamic_slope: belongs to a viscoelastic rope",
+        "EA = 3.15e9\nEA_dynamic_slope = 0.4"),
+    law("viscoelastic-table", "a viscoelastic rope takes EA as its static stiffness, a number",
+        OWC + "\nEA_dynamic = 1.5e8\nBA = 1e9"),
+    law("viscoelastic-without-damper", "line_types.chain.BA: a viscoelastic rope needs BA > 0 or BA_dynamic > 0",
+        "EA = 3.15e9\nEA_dynamic = 4e9"),
+    law("syrope-without-table", "line_types.chain.EA: a SYROPE rope needs EA as its original working curve",
+        "EA = 3.15e9\nEA_dynamic = 1.5e8\nBA = 5e10\nsyrope = { working_curve = \"linear\", k1 = 1.25e8, k2 = 0.0 }",
+        IC),
+    law("syrope-without-dynamic", "line_types.chain.EA_dynamic: a SYROPE rope needs EA_dynamic",
+        OWC + "\nBA = 5e10\nsyrope = { working_curve = \"linear\", k1 = 1.25e8, k2 = 0.0 }", IC),
+    law("syrope-form", "line_types.chain.syrope.working_curve: unknown value 'cubic'",
+        SYROPE.replace('"linear"', '"cubic"'), IC),
+    law("syrope-quadratic-k1", "line_types.chain.syrope.k1: a quadratic working curve needs 0 <= k1 < 1",
+        SYROPE.replace('"linear"', '"quadratic"'), IC),
+    law("syrope-without-ic", "lines[0].segments[0].syrope: line type 'chain' is a SYROPE rope: its segment needs its "
+        "initial condition", SYROPE),
+    law("syrope-tmax-beyond", "lines[0].segments[0].syrope.Tmax: Tmax = 9e+06 N is outside the original working curve",
+        SYROPE, IC.replace("Tmax = 2e6", "Tmax = 9e6")),
+    law("syrope-tmean-above", "lines[0].segments[0].syrope.Tmean: must lie in [0, Tmax = 2e+06] N",
+        SYROPE, IC.replace("Tmean = 1e6", "Tmean = 3e6")),
+    law("ic-not-syrope", "lines[0].segments[0].syrope: line type 'chain' is not a SYROPE rope", EA, IC),
+    toml_case("force-on-fixed-point", "points.a.force: a force acts on a free point or a point of a free body",
+              {"[[lines]]": '[points.a]\nkind = "fixed"\nposition = [-560.0, 0.0, -150.0]\nforce = [1.0, 0.0, 0.0]'
+               "\n[[lines]]", "anchor = [-560.0, 0.0, -150.0]": 'anchor = "a"'}),
+]
+
+CASES = SYNTAX + LINE_TYPE + ENVIRONMENT + LINES + SEABED_CASES + FRICTION_SOLVER + MOTION + AXIAL
 
 
 @pytest.mark.parametrize("case", CASES, ids=str)

@@ -8,7 +8,7 @@ from pathlib import Path
 PACKAGE = Path(__file__).resolve().parents[1] / "cablefem"
 
 #: the stages, in the order data flows through them (docs/architecture.md draws them)
-FOLDERS = {"model", "fem", "loads", "compiled", "statics", "dynamics", "runs", "io", "geometry", "sweeps"}
+FOLDERS = {"model", "fem", "loads", "compiled", "statics", "dynamics", "runs", "io", "geometry", "waves", "sweeps"}
 
 
 def module_name(path):

@@ -125,9 +125,10 @@ def without_ei(name, tmp_path):
 
 def test_tripod_statics_converge_with_the_float_lying_at_its_waterline(tmp_path, capsys):
     """tripod.txt, its lines cables (EI zeroed: ``test_tripod_with_its_ei_does_not_converge``), in
-    statics: the float (EA 2.2e9 N on 0.21 m elements) on a free end swings onto the
-    surface, which Newton, pseudo-transient and settling all failed to reach (residual 1.7e-4 after
-    12,811 iterations); continuation on the axial stiffness reaches it. Nothing pulls sideways in
+    statics: the float (EA 2.2e9 N on 0.21 m elements) on a free end starts risen from the junction
+    to where it floats (``cablefem.statics.hang``), and continuation on the axial stiffness settles it
+    there, where Newton alone finds a basin of micrometres; at each move of the junction the string is
+    translated with it and Newton converges. Nothing pulls sideways in
     still water, so the three anchors' horizontal forces cancel (1e-6 of their size), the tether
     stands vertical above the junction (point 3, moved from where the file put it), and the float's
     nodes lie within its half-diameter of the surface."""

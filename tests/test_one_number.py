@@ -12,7 +12,7 @@ import pytest
 from cablefem.cli import main
 from cablefem.io import load_scene
 from cablefem.io.vtk import read_collection
-from cablefem.post import read_tensions
+from cablefem.post import collection, read_tensions
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = sorted(p.name for p in (ROOT / "examples").iterdir() if p.suffix in (".toml", ".dat"))
@@ -30,7 +30,7 @@ def run(scene, folder, duration="0.02", dt="0.01"):
     """(tensions.csv columns, [(t, meshio frame)]) of a short run of ``scene``."""
     out = folder / "run"
     assert main(["run", str(scene), "--out", str(out), "--duration", duration, "--dt", dt]) == 0
-    pvd = next(out.glob("*.pvd"))
+    pvd = collection(str(out))  # the scene's (a run in waves also writes waves.pvd)
     times, paths = read_collection(pvd)
     return read_tensions(out), [(t, meshio.read(p)) for t, p in zip(times, paths)]
 
@@ -124,3 +124,19 @@ def test_frames_give_the_end_tension_of_tensions_csv(scene, tmp_path):
             tension = line_points(frame, k)[1]["tension"]
             assert tension[-1] == pytest.approx(table[prefix + "fairlead_tension"][row], rel=1e-9)
             assert tension[0] == pytest.approx(table[prefix + "anchor_tension"][row], rel=1e-9)
+
+
+def test_the_summary_extremes_are_those_of_tensions_csv(tmp_path):
+    """summary.json's largest and smallest end tensions per line, and when they first occur, are
+    those of tensions.csv's columns (written to 10 digits), for every line of a network."""
+    out = tmp_path / "run"
+    assert main(["run", str(CROWFOOT), "--out", str(out), "--duration", "3.0"]) == 0
+    table = read_tensions(out)
+    extremes = json.loads((out / "summary.json").read_text())["tension_extremes"]
+    for name, entry in extremes.items():
+        for key in ("fairlead_tension", "anchor_tension"):
+            values = table[f"{name}:{key}"]
+            for which, pick in (("max", np.argmax), ("min", np.argmin)):
+                k = pick(values)
+                assert entry[f"{key}_{which}"] == pytest.approx(values[k], rel=1e-9)
+                assert entry[f"{key}_{which}_t"] == pytest.approx(table["t"][k], abs=1e-9)

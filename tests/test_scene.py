@@ -48,6 +48,8 @@ EXPECTED_EXAMPLES = {  # file: (lines, unstretched length [m] of the first, segm
     "flume_flat_moordyn.toml": (1, 635.0, 1),
     "flume_flat_table.toml": (1, 635.0, 1),
     "chain_polyester.dat": (1, 1500.0, 2),
+    "oc4_semi.dat": (3, 835.5, 1),
+    "oc4_semi.toml": (3, 835.5, 1),
 }
 
 
@@ -247,7 +249,7 @@ BAD_TOML = [
     ({"diameter = 0.3539": "diameter = -0.3539"}, "line_types.chain.diameter", "must be > 0"),
     ({"mass = 835.4": "mass = -835.4"}, "line_types.chain.mass", "must be > 0"),
     ({"EA = 3.15e9": "EA = -3.15e9"}, "line_types.chain.EA", "must be > 0"),
-    ({"gravity = 9.81": "gravity = -9.81"}, "environment.gravity", "must be > 0"),
+    ({"gravity = 9.81": "gravity = -9.81"}, "environment.gravity", "must be >= 0"),
     ({"elements = 40 }]": "elements = 0 }]"}, "lines[0].segments[0].elements", "must be at least 1"),
     ({'type = "chain"': 'type = "chian"'}, "lines[0].segments[0].type", "unknown line type 'chian'"),
     ({'kind = "horizontal"': 'kind = "sloped"'}, "seabed.kind", "valid: horizontal | plane | grid | mesh | points"),
@@ -341,7 +343,10 @@ BAD_MOORDYN = [
     ({"1.23e9": "-1.23e9"}, "line 6: LINE TYPES.chain.EA", "must be > 0"),
     ({"0.216 ": "nan   "}, "line 6: LINE TYPES.chain.Diam", "must be finite"),
     ({"1.23e9    -0.8 ": "1.23e9|5e8 -0.8 "}, "line 6: LINE TYPES.chain.EA",
-     "nonlinear or viscoelastic EA or BA (a curve file or 'a|b' values): '1.23e9|5e8' is not supported: give"),
+     "the dynamic stiffness must exceed the static EA = 1.23e+09 N"),
+    ({"1.23e9    -0.8 ": "1.2e9|1.3e9|0.4|9 -0.8 "}, "line 6: LINE TYPES.chain.EA",
+     "at most 3 values separated by '|'"),
+    ({"1.23e9    -0.8 ": "stiff.txt -0.8 "}, "line 6: LINE TYPES.chain.EA", "file not found"),
     ({"1        2        500.0     20": "1        2        -500.0    20"}, "line 17: LINES.1.UnstrLen", "must be > 0"),
     ({"1        2        500.0     20": "1        2        500.0     0 "}, "line 17: LINES.1.NumSegs", "at least 1"),
     ({"1     chain       1": "1     chian       1"}, "line 17: LINES.1.LineType", "unknown line type 'chian'"),
@@ -352,9 +357,9 @@ BAD_MOORDYN = [
     ({"3      Coupled": "3      Floating"}, "line 13: POINTS.3.Attachment", "unknown attachment 'Floating'"),
     ({"3      Coupled": "3      Body1  "}, "line 13: POINTS.3.Attachment", "no body 1 in BODIES (none defined)"),
     ({"3      Coupled": "3      Turbine1"}, "line 13: POINTS.3.Attachment", "FAST.Farm turbine"),
-    ({"-14.0    0      0        0     0": "-14.0    0      0   0 0 5e3  0     0"}, "line 13: POINTS.3.FX",
-     "a steady external force on a point"),
-    ({"850.0     WtrDpth": "850.0     WtrDpth\n1   WaveKin"}, "line 22: OPTIONS.WaveKin", "set WaveKin 0"),
+    ({"-14.0    0      0        0     0": "-14.0    0      0   nan 0 5e3  0     0"}, "line 13: POINTS.3.FX",
+     "must be finite"),
+    ({"850.0     WtrDpth": "850.0     WtrDpth\n1   WaveKin"}, "line 22: OPTIONS.WaveKin", "give the waves as [waves]"),
     ({"850.0     WtrDpth": "850.0     WtrDpth\n2   Currents"}, "line 22: OPTIONS.Currents",
      "a time-varying or gridded current (Currents 2 to 5): Currents 2 is not supported"),
     ({"850.0     WtrDpth": "850.0     WtrDpth\n1   Currents"}, "line 22: OPTIONS.Currents (current_profile.txt)",
@@ -367,7 +372,7 @@ BAD_MOORDYN = [
      "expected 6 columns"),
     ({"ID    LineType    AttachA  AttachB  UnstrLen  NumSegs  Outputs":
       "Line  LineType    UnstrLen NumSegs  NodeAnch  NodeFair Outputs"},
-     "line 15: LINES", "the MoorDyn v1 LINES columns"),
+     "line 17: LINES.1.AttachA", "no point '500.0' in POINTS"),  # v1 columns: the v2 row's UnstrLen is NodeAnch
     ({"--------------------------- OUTPUTS": "--- CURRENT PROFILE ---\n0.0 0.5 0.0\n--- OUTPUTS"},
      "line 24: CURRENT PROFILE", "unrecognised section"),
 ]

@@ -19,7 +19,8 @@ PACKAGE = Path(__file__).parent.parent
 PATTERNS = ("compiled/*.py", "dynamics/policy.py",
             "loads/*.py",  # every load of the catalog, whatever its file
             "geometry/_vertex_normal_jit.py", "geometry/_walk_jit.py", "geometry/grid.py",
-            "geometry/_vertex_normal.py", "geometry/_search.py")  # INSIDE_TOLERANCE, WALK_STEPS
+            "geometry/_vertex_normal.py", "geometry/_search.py",  # INSIDE_TOLERANCE, WALK_STEPS
+            "waves/compiled.py")
 KERNEL_SOURCES = tuple(sorted(str(path.relative_to(PACKAGE)) for pattern in PATTERNS for path in PACKAGE.glob(pattern)))
 STAMP = "kernels.sha256"
 

@@ -20,6 +20,7 @@ from cablefem.compiled.hermite import CLAMP_LOCAL
 from cablefem.fem.evaluator import Evaluator
 from cablefem.geometry import Plane
 from cablefem.loads import catalog
+from cablefem.waves.compiled import water_of
 
 
 def pack_params(loads, nel):
@@ -136,6 +137,9 @@ class FusedEvaluator(Evaluator):
         if isinstance(system.seabed, Plane):
             self.plane = np.append(system.seabed.normal, system.seabed.offset).astype(float)
         self.unused = (np.zeros((1, 1)), np.zeros((1, 1, 3)), np.zeros((1, 1, 3)), np.zeros((1, 1, 3, 3)))
+        # the sea of a line whose loads see waves (the Morison load, points in waves); none otherwise
+        seas = [load.sea for load in system.loads if getattr(load, "sea", None) is not None]
+        self.water = water_of(seas[0] if seas else None, fem.n_elements * fem.full.dx.shape[1] + len(vertices))
         self.elements = np.arange(nel, dtype=np.int64)
 
     @classmethod
@@ -155,18 +159,20 @@ class FusedEvaluator(Evaluator):
                            np.ascontiguousarray(proj.gap_gradient.reshape(shape + (3,))),
                            np.ascontiguousarray(proj.direction_gradient.reshape(shape + (3, 3))))
 
-    def evaluate(self, X, V, A, v_x, a_x, jacobian=True, held=False, t=0.0):
-        """Rows M A + G (N, 3) and, with ``jacobian``, the banded K + v_x C + a_x M (LAPACK layout);
-        with ``held``, the loads on the branches the hold records hold. The branch state and the
-        trial history of every point go to ``self.points``."""
+    def evaluate(self, X, V, A, v_x, a_x, jacobian=True, held=False, t=0.0, h=0.0):
+        """Rows M A + G (N, 3) at time t [s] and, with ``jacobian``, the banded K + v_x C + a_x M (LAPACK
+        layout); with ``held``, the loads on the branches the hold records hold; ``h``: the step's size
+        [s] (0: none, statics). The branch state and the trial history of every point go to
+        ``self.points``."""
         rows = np.zeros((self.system.fem.n_dofs, 3))
         # Fortran order, as LAPACK and the compiled steps hold it (one compiled kernel for both;
         # the unused band is 2 x 2, since numba would type a 1 x 1 array as C-ordered)
         band = np.zeros((2 * self.kl + self.ku + 1, self.n) if jacobian else (2, 2), order="F")
-        kernels.assemble(self.mesh, self.bed(X), self.points, self.work, (X, V, A), (float(v_x), float(a_x)),
+        state, factors = (X, V, A, float(t)), (float(v_x), float(a_x), float(h))
+        kernels.assemble(self.mesh, self.bed(X), self.water, self.points, self.work, state, factors,
                          bool(jacobian), bool(held), rows, band, self.elements)
         if self.mesh.nodes.size:
-            kernels.assemble_nodes(self.mesh, self.points, self.work, (X, V, A), (float(v_x), float(a_x)),
+            kernels.assemble_nodes(self.mesh, self.water, self.points, self.work, state, factors,
                                    bool(jacobian), rows, band)
         return rows, (band if jacobian else None)
 
@@ -196,10 +202,10 @@ class FusedEvaluator(Evaluator):
         self.points.full_hold[...] = 0
         self.points.reduced_hold[...] = 0
 
-    def mass_factors(self, X, V, A, tangent):
-        """Factors of the free rows' mass at a state: the a_x = 1 tangent less the a_x = 0 one, the
-        clamps' constraint added back (``add_constraints``)."""
-        return self.factorize(self.add_constraints(tangent - self.evaluate(X, V, A, 0.0, 0.0)[1]))
+    def mass_factors(self, X, V, A, tangent, t=0.0):
+        """Factors of the free rows' mass at a state at time t [s]: the a_x = 1 tangent less the a_x = 0
+        one, the clamps' constraint added back (``add_constraints``)."""
+        return self.factorize(self.add_constraints(tangent - self.evaluate(X, V, A, 0.0, 0.0, t=t)[1]))
 
     def factorize(self, band, scale=1.0):
         """LU factors of scale x band (dgbtrf); None if singular."""

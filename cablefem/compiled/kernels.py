@@ -37,9 +37,11 @@ import numpy as np
 from numba import literal_unroll, njit
 from numba import uint64 as _index
 from numba.core.errors import NumbaExperimentalFeatureWarning
+from numba.extending import overload
 
 from cablefem.compiled.hermite import CLAMP_SCALE, _add_second, _clamp, _second_kinematics
 from cablefem.loads import catalog
+from cablefem.waves.compiled import NONE as NO_WATER, water_cached
 
 # numba marks the catalog's tuple of functions "first-class", an experimental feature; literal_unroll
 # resolves each call statically (measured: as fast as direct calls)
@@ -50,13 +52,19 @@ FULL_KERNELS, REDUCED_KERNELS, NODE_KERNELS = LAYOUT.full_kernels, LAYOUT.reduce
 FULL_RULES, REDUCED_RULES = LAYOUT.full_rules, LAYOUT.reduced_rules
 
 #: what a point kernel sees of its point (set by ``assemble``); t, stretch and P at full points only
-#: (P, the normal projector I - t t^T, only when a tangent is assembled); which loads of each rule the
+#: (P, the normal projector I - t t^T, only when a tangent is assembled); the evaluation time and, on a
+#: line in waves, the water's elevation above the point, its velocity and acceleration and (with a
+#: tangent) their gradients, and whether the point is below the surface (``cablefem.waves.compiled``,
+#: ``water_at``; a line in still water leaves them alone); which loads of each rule the
 #: line has (``Points.full_loads``, ``reduced_loads``: read from the context, not passed, because
-#: an argument more per point cost more instructions than the calls it saves)
+#: an argument more per point cost more instructions than the calls it saves); inv_h: 1 / the step's
+#: size [1/s] (0 without a step: statics), for a load whose history evolves in time (``loads.rope``)
 POINT = [("r", "f8", (3,)), ("dr", "f8", (3,)), ("v", "f8", (3,)), ("dv", "f8", (3,)),
          ("a", "f8", (3,)), ("t", "f8", (3,)), ("stretch", "f8"), ("P", "f8", (3, 3)),
          ("gap", "f8"), ("n", "f8", (3,)), ("grad_gap", "f8", (3,)), ("dn", "f8", (3, 3)),
-         ("curved", "?"), ("v_x", "f8"), ("a_x", "f8"), ("jac", "?"), ("held", "?"),
+         ("curved", "?"), ("v_x", "f8"), ("a_x", "f8"), ("inv_h", "f8"), ("jac", "?"), ("held", "?"), ("time", "f8"),
+         ("wet", "?"), ("eta", "f8"), ("water_u", "f8", (3,)), ("water_a", "f8", (3,)),
+         ("water_du", "f8", (3, 3)), ("water_da", "f8", (3, 3)),
          ("full_loads", "u1", (len(FULL_KERNELS),)), ("reduced_loads", "u1", (len(REDUCED_KERNELS),)),
          ("ddr", "f8", (3,))]  # r'' of a Hermite line with bending (``_second_kinematics``)
 _clash = {name for name, _ in LAYOUT.scratch} & {entry[0] for entry in POINT}
@@ -124,6 +132,19 @@ def work(nloc):
     return Work(records(CONTEXT, 1), records(OUT, 1), np.zeros((nloc, 3)), np.zeros((nloc, 3, nloc, 3)))
 
 
+def inverse_step(factors):
+    """1 / h [1/s] of a step's factors (v_x, a_x, h); 0 for (v_x, a_x) or h <= 0 (statics: no step)."""
+    return 1.0 / factors[2] if len(factors) > 2 and factors[2] > 0.0 else 0.0
+
+
+@overload(inverse_step, jit_options={"cache": True})
+def _inverse_step(factors):
+    """``inverse_step`` compiled for either length of the factors' tuple."""
+    if len(factors) > 2:
+        return lambda factors: 1.0 / factors[2] if factors[2] > 0.0 else 0.0
+    return lambda factors: 0.0
+
+
 @njit(cache=True, inline="always", _nrt=False)
 def full_point(ctx, p, old, new, state, hold, out):
     """The full-point loads of the catalog the line has (``ctx.full_loads``), in order, into
@@ -164,18 +185,20 @@ def node_point(ctx, p, out):
 
 
 @njit(cache=True, _nrt=False)
-def assemble_nodes(mesh, pts, work, state, factors, jac, rows, band):
+def assemble_nodes(mesh, water, pts, work, state, factors, jac, rows, band):
     """The node loads at their vertices (``mesh.nodes``): -f added to the rows (N, 3) and, with
-    ``jac``, the 3 x 3 block A to the band's diagonal (unknown vertices only)."""
-    X, V, Acc = state
+    ``jac``, the 3 x 3 block A to the band's diagonal (unknown vertices only); state (X, V, A, t)."""
+    X, V, Acc, time = state
     ctx, out = work.ctx[0], work.out[0]
-    ctx.v_x, ctx.a_x = factors
-    ctx.jac = jac
+    ctx.v_x, ctx.a_x, ctx.inv_h = factors[0], factors[1], inverse_step(factors)
+    ctx.jac, ctx.time = jac, time
     kl, ku = mesh.kl, mesh.ku
     for k in range(mesh.nodes.shape[0]):
         i = mesh.nodes[k]
         for a in range(3):
             ctx.r[a], ctx.v[a], ctx.a[a] = X[i, a], V[i, a], Acc[i, a]
+        if water.kind != NO_WATER:  # the cache's rows after the full points'
+            _water(ctx, water, mesh.dx.shape[0] * mesh.dx.shape[1] + k)
         node_point(ctx, pts.nodes[k], out)
         for a in range(3):
             rows[i, a] -= out.f[a]
@@ -190,17 +213,19 @@ def assemble_nodes(mesh, pts, work, state, factors, jac, rows, band):
 
 
 @njit(cache=True, _nrt=False)
-def subtract_node_loads(mesh, pts, work, state, vertex, force):
-    """``force`` (3,) less the node loads at vertex ``vertex`` at the state (X, V, A): a line's own
+def subtract_node_loads(mesh, water, pts, work, state, vertex, force):
+    """``force`` (3,) less the node loads at vertex ``vertex`` at the state (X, V, A, t): a line's own
     force on a point that rides on its end (``LineSystem.end_point_loads``)."""
-    X, V, Acc = state
+    X, V, Acc, time = state
     ctx, out = work.ctx[0], work.out[0]
-    ctx.jac = False
+    ctx.jac, ctx.time = False, time
     for k in range(mesh.nodes.shape[0]):
         if mesh.nodes[k] != vertex:
             continue
         for a in range(3):
             ctx.r[a], ctx.v[a], ctx.a[a] = X[vertex, a], V[vertex, a], Acc[vertex, a]
+        if water.kind != NO_WATER:
+            _water(ctx, water, mesh.dx.shape[0] * mesh.dx.shape[1] + k)
         node_point(ctx, pts.nodes[k], out)
         for a in range(3):
             force[a] -= out.f[a]
@@ -259,30 +284,40 @@ def _seabed(ctx, bed, e, g):
 
 
 @njit(cache=True, _nrt=False)
-def assemble(mesh, bed, pts, work, state, factors, jac, held, rows, band, elements):
+def _water(ctx, water, index):
+    """The water's kinematics at the point ``ctx.r`` and time ``ctx.time`` into the context, the point's
+    row ``index`` of the water's cache (``cablefem.waves.compiled.water_cached``)."""
+    ctx.eta, ctx.wet = water_cached(water, index, ctx.r, ctx.time, ctx.water_u, ctx.water_a, ctx.water_du,
+                                    ctx.water_da)
+
+
+@njit(cache=True, _nrt=False)
+def assemble(mesh, bed, water, pts, work, state, factors, jac, held, rows, band, elements):
     """Residual rows M A + G over ``elements`` added to ``rows`` (N, 3) and, with ``jac``, the
-    banded tangent of the free unknowns added to ``band`` (LAPACK's layout); state: (X, V, A),
-    each (N, 3); factors: (v_x, a_x); held: the loads keep the branches the hold records hold
-    (Newton's corrections). Kernel, so over 12 arguments' worth of data comes in named tuples."""
+    banded tangent of the free unknowns added to ``band`` (LAPACK's layout); state: (X, V, A, t),
+    each (N, 3) and the time [s]; water: the line's sea (``cablefem.waves.compiled.Water``);
+    factors: (v_x, a_x) or (v_x, a_x, h) with the step's size h [s] (``inverse_step``); held: the
+    loads keep the branches the hold records hold (Newton's corrections). Kernel, so over 12
+    arguments' worth of data comes in named tuples."""
     ctx = work.ctx[0]
-    ctx.v_x, ctx.a_x = factors
-    ctx.jac, ctx.held = jac, held
+    ctx.v_x, ctx.a_x, ctx.inv_h = factors[0], factors[1], inverse_step(factors)
+    ctx.jac, ctx.held, ctx.time = jac, held, state[3]
     for k in range(pts.full_loads.shape[0]):
         ctx.full_loads[k] = pts.full_loads[k]
     for k in range(pts.reduced_loads.shape[0]):
         ctx.reduced_loads[k] = pts.reduced_loads[k]
     if pts.ddphi.shape[0] > 0 or pts.clamp[0, CLAMP_SCALE] > 0.0 or pts.clamp[1, CLAMP_SCALE] > 0.0:
-        _elements(mesh, bed, pts, work, state, jac, rows, band, elements, True)
+        _elements(mesh, bed, water, pts, work, state, jac, rows, band, elements, True)
     else:  # the loop compiled without the bending's branches
-        _elements(mesh, bed, pts, work, state, jac, rows, band, elements, False)
+        _elements(mesh, bed, water, pts, work, state, jac, rows, band, elements, False)
 
 
 @njit(cache=True, inline="always", _nrt=False)
-def _elements(mesh, bed, pts, work, state, jac, rows, band, elements, bends):
+def _elements(mesh, bed, water, pts, work, state, jac, rows, band, elements, bends):
     """``assemble``'s loop over ``elements``; ``bends``, a constant at each call (the compiler
     drops its branches where it is False): r'' read at the full points (a Hermite line with
     bending) and the clamped ends' rows made their constraints."""
-    X, V, Acc = state
+    X, V, Acc = state[0], state[1], state[2]
     ctx, out, Re, Ke = work.ctx[0], work.out[0], work.Re, work.Ke
     second = bends and pts.ddphi.shape[0] > 0
     first_clamped = bends and pts.clamp[0, CLAMP_SCALE] > 0.0
@@ -300,6 +335,8 @@ def _elements(mesh, bed, pts, work, state, jac, rows, band, elements, bends):
             if second:
                 _second_kinematics(ctx, out, mesh, pts.ddphi, X, e, g)
             _seabed(ctx, bed, e, g)
+            if water.kind != NO_WATER:
+                _water(ctx, water, element * nq + g)
             full_point(ctx, p, pts.full_old[e, g], pts.full_new[e, g], pts.full_state[e, g],
                        pts.full_hold[e, g], out)
             _add_full(Re, Ke, mesh, out, ctx, e, g, jac)

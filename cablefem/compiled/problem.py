@@ -93,7 +93,7 @@ class _String:
         self.factors["auto_left"] = integ.full_steps_left  # "auto" Newton's state, shared with the Python ops
         self.factors["contraction"] = integ.contraction
         state = tuple(np.array(x, dtype=float) for x in (integ.X, integ.V, integ.A, integ.memory, integ.X))
-        return Problem(settings, ev.mesh, self.bed, ev.points, ev.work, self.projector(integ.X),
+        return Problem(settings, ev.mesh, self.bed, ev.water, ev.points, ev.work, self.projector(integ.X),
                        fem.free_dofs.astype(np.int64), self.interior, ev.free_order, ev.elements, self.end_elements,
                        int(fem.anchor_dof), int(fem.fairlead_dof), integ.scale, self.increment_scale, self.EA, *state,
                        np.zeros_like(integ.X), *self.rows, *self.vectors, *self.bands, ev.base_full,

@@ -42,8 +42,8 @@ from cablefem.dynamics import policy
 DEPTH = 3
 FRACTIONS = 2 ** DEPTH
 
-#: one string (``cablefem.compiled.problem.Packer``): the policy's settings, the kernel's records (mesh, bed, pts,
-#: work) and the seabed's projector; its free nodes, those of them that are not junction ends
+#: one string (``cablefem.compiled.problem.Packer``): the policy's settings, the kernel's records (mesh, bed, water,
+#: pts, work) and the seabed's projector; its free nodes, those of them that are not junction ends
 #: (``interior``), the free unknowns in band order, all and the end elements, the anchor and fairlead
 #: nodes, its residual scale, the factor that puts its increments in the group's increment
 #: tolerance and the axial stiffness per element [N] (the error control's tension scale); the state X, V, A, the scheme's memory (MEMORY, N, 3), the last predictor and the rows
@@ -57,7 +57,7 @@ FRACTIONS = 2 ** DEPTH
 #: end of the attempt (2, 3); its junction ends, (2, 3) rows of (band row, junction, node), -1 where
 #: unused, the columns Z (n, 6) of K^-1 there, their end stiffness S (6, 6) and the string's own step
 #: there yE (6,)
-Problem = namedtuple("Problem", "settings mesh bed pts work projector free_nodes interior free_order all_elements "
+Problem = namedtuple("Problem", "settings mesh bed water pts work projector free_nodes interior free_order all_elements "
                                 "end_elements anchor_node fairlead_node scale increment_scale EA "
                                 "X V A memory prediction rows X1 Xe Ve Ae guess base "
                                 "rhs step original band lu ipiv multipliers base_full base_reduced keeps commits "
@@ -147,8 +147,8 @@ def _inverse(M, out, n, work, column):
 
 # ---------------------------------------------------------------------------- one string
 @njit(cache=True, inline="always", _nrt=False)  # a call would copy the Problem's fields once more
-def _assemble_at(p, X, V, A, tangent, held, elements, rows):
-    """M A + G at (X, V, A) into ``rows`` over ``elements`` (and the node loads) and,
+def _assemble_at(p, X, V, A, time, tangent, held, elements, rows):
+    """M A + G at (X, V, A) and ``time`` [s] into ``rows`` over ``elements`` (and the node loads) and,
     with ``tangent``, its banded tangent into ``p.band`` (both zeroed first), the seabed projected
     first unless it is a plane. Returns the projection's status (0, or the points the walk did not
     place)."""
@@ -156,16 +156,17 @@ def _assemble_at(p, X, V, A, tangent, held, elements, rows):
         lost = project(p.projector, X, p.mesh, p.bed, tangent)
         if lost != 0:
             return lost
-    factors = (p.clock[0].v_x, p.clock[0].a_x)
+    factors = (p.clock[0].v_x, p.clock[0].a_x, p.clock[0].h)  # h: loads whose history evolves in time
     nb = p.rhs.shape[0]
     ld = 2 * p.mesh.kl + p.mesh.ku + 1
     band2 = p.band.reshape((nb, ld)).T  # the (ld, nb) column-major view the assembly writes
     rows[:] = 0.0
     if tangent:
         band2.T[:] = 0.0  # the contiguous (nb, ld) view: a memset, not a strided walk
-    kernels.assemble(p.mesh, p.bed, p.pts, p.work, (X, V, A), factors, tangent, held, rows, band2, elements)
+    kernels.assemble(p.mesh, p.bed, p.water, p.pts, p.work, (X, V, A, time), factors, tangent, held, rows, band2,
+                     elements)
     if p.mesh.nodes.shape[0]:
-        kernels.assemble_nodes(p.mesh, p.pts, p.work, (X, V, A), factors, tangent, rows, band2)
+        kernels.assemble_nodes(p.mesh, p.water, p.pts, p.work, (X, V, A, time), factors, tangent, rows, band2)
     return 0
 
 
@@ -173,7 +174,7 @@ def _assemble_at(p, X, V, A, tangent, held, elements, rows):
 def _assemble(p, tangent, held, elements):
     """The step residual of string p at its trial point over ``elements`` (``_assemble_at``), counted."""
     scheme_point(p.scheme, p.clock, p.X, p.V, p.A, p.memory, p.X1, p.Xe, p.Ve, p.Ae)
-    lost = _assemble_at(p, p.Xe, p.Ve, p.Ae, tangent, held, elements, p.rows)
+    lost = _assemble_at(p, p.Xe, p.Ve, p.Ae, p.clock[0].t_eval, tangent, held, elements, p.rows)
     if lost == 0:
         p.counters[policy.NFEV] += 1
     return lost
@@ -480,15 +481,17 @@ def _forces(p, out):
     first, uncounted (as ``Integrator.reactions``). Returns the projection's status (0, or the
     points the walk did not place)."""
     if not ROWS_AT_STATE:
-        lost = _assemble_at(p, p.X, p.V, p.A, policy.FLAG[0], policy.FLAG[0], p.end_elements, p.rows)
+        lost = _assemble_at(p, p.X, p.V, p.A, p.clock[0].t, policy.FLAG[0], policy.FLAG[0], p.end_elements,
+                            p.rows)
         if lost != 0:
             return lost
     for a in range(3):
         out[0, a] = -p.rows[p.fairlead_node, a]
         out[1, a] = -p.rows[p.anchor_node, a]
     if p.mesh.nodes.shape[0]:  # a point riding on an end: the line's own force leaves its load out
-        kernels.subtract_node_loads(p.mesh, p.pts, p.work, (p.X, p.V, p.A), p.fairlead_node, out[0])
-        kernels.subtract_node_loads(p.mesh, p.pts, p.work, (p.X, p.V, p.A), p.anchor_node, out[1])
+        state = (p.X, p.V, p.A, p.clock[0].t)
+        kernels.subtract_node_loads(p.mesh, p.water, p.pts, p.work, state, p.fairlead_node, out[0])
+        kernels.subtract_node_loads(p.mesh, p.water, p.pts, p.work, state, p.anchor_node, out[1])
     return 0
 
 

@@ -1,4 +1,5 @@
-"""Time integration: the integrator contract (``integrator``), the schemes (``schemes``) and their one
-registry (``registry``), the Newton policy of a step written once (``policy``) with its Python ops
-(``python_ops``), the step control (``step_control``), the junction groups (``junctions``) and the energy
-bookkeeping of a line between states (``energy``)."""
+"""Time integration: what a scheme is (``scheme``), the schemes (``bdf2``, ``generalized_alpha``) and
+their one registry (``registry``), the integrator (``integrator``), the Newton policy and its one step
+control written once (``policy``) with its Python ops (``python_ops``), groups of strings, a line
+alone or those meeting at junctions (``group``), and the energy bookkeeping of a line between states
+(``energy``)."""

@@ -200,7 +200,7 @@ class Integrator:
         rows, with_mass = ev.evaluate(X, V, A, 0.0, 1.0, t=self.t)
         if np.linalg.norm(rows[fem.free_dofs]) <= 1e-12 * self.scale:
             return A
-        factors = ev.mass_factors(X, V, A, with_mass)
+        factors = ev.mass_factors(X, V, A, with_mass, self.t)
         if factors is None:
             raise ConvergenceError(f"{self.name}: the mass matrix is singular at t = {self.t:.6g} s "
                                    "(check the line's mass and added-mass coefficients)")
@@ -210,14 +210,17 @@ class Integrator:
     # ------------------------------------------------------------ the policy's Python ops
     def rows_and_tangent(self, X, V, A, t, v_x, a_x, jacobian, held=False):
         """Rows M A + G (N, 3) at the evaluation point and, with ``jacobian``, the tangent of the
-        loads and mass in the representation ``increment`` factors (``held``: held branches)."""
+        loads and mass in the representation ``increment`` factors (``held``: held branches); the
+        step's size h from the clock, for the loads whose history evolves in time (``loads.rope``)."""
         self.nfev += 1
-        return self.evaluator.evaluate(X, V, A, v_x, a_x, jacobian, held, t)
+        return self.evaluator.evaluate(X, V, A, v_x, a_x, jacobian, held, t, h=float(self.clock["h"][0]))
 
-    def evaluate(self, X, V, A, t, v_x, a_x, jacobian=True):
-        """Load residual rows and tangent blocks (the numpy loads) at an evaluation point."""
+    def evaluate(self, X, V, A, t, v_x, a_x, jacobian=True, h=0.0):
+        """Load residual rows and tangent blocks (the numpy loads) at an evaluation point of a step
+        of h [s]."""
         self.nfev += 1
-        return self.system.evaluate(self.system.state(X, V, A, t), jacobian, v_x, a_x)
+        state = self.system.state(X, V, A, t, inv_h=1.0 / h if h > 0.0 else 0.0)
+        return self.system.evaluate(state, jacobian, v_x, a_x)
 
     def increment(self, tangent, rows, refactor):
         """The Newton increment (N_free, 3) for residual ``rows``, with ``refactor`` from fresh LU

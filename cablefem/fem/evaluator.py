@@ -15,12 +15,14 @@ and solve for the step of the free DOFs. Two evaluators give the same numbers to
 
 ``LineSystem.evaluator(compiled, lumped)`` gives a system's. The interface both keep:
 
-    evaluate(X, V, A, v_x, a_x, jacobian=True, held=False, t=0.0) -> (rows, tangent or None)
+    evaluate(X, V, A, v_x, a_x, jacobian=True, held=False, t=0.0, h=0.0) -> (rows, tangent or None)
+                                      (h: the step's size [s], 0 in statics, for the loads whose
+                                      history evolves in time: ``cablefem.loads.rope``)
     factorize(tangent, scale=1.0) -> factors, or None if singular
     solve(factors, rows) -> step (N_free, 3) of the free DOFs for the residual ``rows``
     solve_many(factors, rows) -> steps (m, N_free, 3) for m residuals (m, N, 3)
-    mass_factors(X, V, A, tangent) -> factors of the free rows' mass (M + added mass) at a state,
-                                      ``tangent`` the one ``evaluate`` gave with v_x = 0, a_x = 1
+    mass_factors(X, V, A, tangent, t=0.0) -> factors of the free rows' mass (M + added mass) at a state,
+                                             ``tangent`` the one ``evaluate`` gave with v_x = 0, a_x = 1
     inertia(A) -> rows M A (N, 3)
     keep(), hold(again) -> bool, release()   the branch holds of Newton's corrections (the numpy
                                              loads hold no branch: ``hold`` is False)
@@ -83,9 +85,10 @@ class NumpyEvaluator(Evaluator):
         fem = self.system.fem
         return self.M[fem.free_vector_dofs][:, fem.free_vector_dofs].tocsr()
 
-    def evaluate(self, X, V, A, v_x, a_x, jacobian=True, held=False, t=0.0):
+    def evaluate(self, X, V, A, v_x, a_x, jacobian=True, held=False, t=0.0, h=0.0):
         system = self.system
-        residual, blocks = system.evaluate(system.state(X, V, A, t), jacobian, v_x, a_x)
+        state = system.state(X, V, A, t, inv_h=1.0 / h if h > 0.0 else 0.0)
+        residual, blocks = system.evaluate(state, jacobian, v_x, a_x)
         return residual + self.inertia(A), ((blocks, a_x) if jacobian else None)
 
     def factorize(self, tangent, scale=1.0):
@@ -106,10 +109,10 @@ class NumpyEvaluator(Evaluator):
     def solve_many(self, factors, rows):
         return np.array([self.solve(factors, part) for part in rows])
 
-    def mass_factors(self, X, V, A, tangent):
+    def mass_factors(self, X, V, A, tangent, t=0.0):
         system = self.system
         blocks, _ = tangent
-        static = system.evaluate(system.state(X, V, A), jacobian=True)[1]
+        static = system.evaluate(system.state(X, V, A, t), jacobian=True)[1]
         K = system.matrix(blocks) - system.matrix(static) + self.M_free
         if system.clamps:  # the constraint, which the difference took out
             K = K + clamp.constraint_matrix(system.clamps, system.fem)

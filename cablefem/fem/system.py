@@ -27,7 +27,9 @@ from cablefem.loads.tension import axial_tension, strain
 
 def element_properties(line):
     """Per-element line-type properties, each an array of shape (n_elements,); ``nominal_diameter``
-    [m] is NaN where a line type does not give it."""
+    [m] is NaN where a line type does not give it; ``rope``: the element's type has an axial law of
+    its own (``cablefem.loads.rope``), whose ``axial`` laws and SYROPE ``syrope_initial`` (Tmax0,
+    Tmean0) [N] (nel, 2) come only where one does."""
     types = [seg.type for seg in line.segments]
     index = line.element_segments()
     names = ("diameter", "mass", "EA", "damping", "Cd_normal", "Cd_tangential",
@@ -35,6 +37,12 @@ def element_properties(line):
     props = {name: np.array([getattr(t, name) for t in types])[index] for name in names}
     props["nominal_diameter"] = np.array([np.nan if t.nominal_diameter is None else t.nominal_diameter
                                           for t in types])[index]
+    if any(t.axial is not None for t in types):  # a law of its own: the rope load, not the tension's
+        props["axial"] = [types[k].axial for k in index]
+        props["rope"] = np.array([types[k].axial is not None for k in index])
+        props["syrope_initial"] = np.array([line.segments[k].syrope or (0.0, 0.0) for k in index])
+    else:
+        props["rope"] = np.zeros(len(index), dtype=bool)
     return props
 
 
@@ -134,9 +142,10 @@ class LineSystem:
         """Rows of the anchor and fairlead vertices in a state array."""
         return list(self.fem.end_dofs)
 
-    def state(self, X, V=None, A=None, t=0.0):
+    def state(self, X, V=None, A=None, t=0.0, inv_h=0.0):
         """Kinematics at the full quadrature points for state X (N, 3), velocity V and
-        acceleration A; ``.reduced`` holds them at the reduced points (see ``LineFEM``)."""
+        acceleration A; ``.reduced`` holds them at the reduced points (see ``LineFEM``); ``inv_h``:
+        1 / the step's size [1/s] (0: statics)."""
         columns = [X] + [Y for Y in (V, A) if Y is not None]
         stacked = np.hstack(columns) if len(columns) > 1 else X
         states = []
@@ -152,7 +161,7 @@ class LineSystem:
             if A is not None:
                 a = rest.pop(0)[0]
             old, new = self.history["full" if rule is self.fem.full else "reduced"]
-            states.append(State(r, dr, v, dv, a, t, old=old, new=new))
+            states.append(State(r, dr, v, dv, a, t, old=old, new=new, inv_h=inv_h))
         full, reduced = states
         full.reduced = reduced
         full.X = X

@@ -3,7 +3,7 @@
 Sections read: LINE TYPES (v2 columns, or the v1 header read by position as MoorDyn-C reads it),
 BODIES, POINTS, LINES, OPTIONS (value first: ``850 WtrDpth``) and OUTPUTS (channel names, up to
 ``END``, recorded and ignored). Rows before the first recognised ``---`` header are the title
-(``moordyn_sections`` cuts the file). What cablefem does not read (RODS, wave kinematics, nonlinear
+(``moordyn_sections`` cuts the file). What cablefem does not read (RODS, WaveKin 1, nonlinear
 EA, ...) is refused with what to do instead, from the one list ``moordyn_sections.REFUSED``. Numbers
 and IDs are ASCII (``str.isdigit`` and ``float`` would take other scripts' digits) and within the
 sane limits of ``validate.LIMITS``.
@@ -15,6 +15,7 @@ Mapping (each conversion checked against the MoorDyn 2.7 library, docs/scene.md)
   first. Junctions of three or more line ends and free bodies are read as they are: the statics
   solve them (``cablefem.statics.network``), a run refuses what it cannot step (``network.check_no_coupling``);
 - ``Currents 1``: the steady profile of ``current_profile.txt`` beside the file (``io.currents``);
+- ``WaveKin`` 2, 3 and 7: the waves of their files beside the file (``io.moordyn_waves``);
 - BA >= 0 is the internal damping coefficient [N s]: beta = BA / EA [s];
   BA < 0 is -zeta, MoorDyn's BA = zeta (UnstrLen / NumSegs) sqrt(EA m);
 - CdAx refers to the surface area pi d l, desire2023 Eq. 3 to d: Cd_tangential = pi CdAx;
@@ -37,6 +38,8 @@ import os
 import re
 from dataclasses import replace
 
+import numpy as np
+
 from cablefem.errors import InputError
 from cablefem.geometry import Horizontal, choose_seabed
 from cablefem.geometry.readers import is_number
@@ -44,7 +47,9 @@ from cablefem.model.line import Line, LineType, Segment
 from cablefem.model.network import point_position, strings as network_strings
 from cablefem.model.scene import Contact, Environment, Friction, Scene, Solver
 from cablefem.io import validate as v
+from cablefem.io.axial_input import is_law, moordyn_law
 from cablefem.io.currents import MOORDYN_FILE, read_current_profile
+from cablefem.io.moordyn_waves import DT_WAVE, read_wave_kin
 from cablefem.io.moordyn_network import line_end, read_bodies, read_points
 from cablefem.io.moordyn_sections import (TABLE_COLUMNS, at as _at, parse_sections, refuse, split_sections,
     value as _value)
@@ -61,14 +66,17 @@ LINE_TYPE_CHECKS = {"Diam": v.limited(v.positive, "diameter"), "MassDen": v.limi
                     "Cd": _COEFFICIENT, "Ca": _COEFFICIENT, "CdAx": _COEFFICIENT, "CaAx": _COEFFICIENT}
 OPTION_ALIASES = {"rhow": "wtrdnsty", "rho": "wtrdnsty", "gravity": "g", "kb": "kbot", "cb": "cbot"}
 OPTION_CHECKS = {"wtrdpth": v.limited(v.positive, "length"),
-                 "wtrdnsty": v.limited(v.positive, "water_density"),
-                 "g": v.limited(v.positive, "gravity"), "kbot": v.limited(v.positive, "stiffness"),
+                 "wtrdnsty": v.limited(v.non_negative, "water_density"),
+                 "g": v.limited(v.non_negative, "gravity"), "kbot": v.limited(v.positive, "stiffness"),
                  "cbot": v.limited(v.non_negative, "contact_damping"),
                  "frictioncoefficient": v.limited(v.non_negative, "friction"),
                  "fricdamp": v.limited(v.positive, "friction_damping"),
                  "statdynfricscale": v.limited(v.positive, "friction"), "dtm": v.positive,
-                 "tmax": v.positive, "currents": v.number, "wavekin": v.number}
+                 "tmax": v.positive, "currents": v.number, "wavekin": v.number, "dtwave": v.positive}
 _WHOLE = re.compile(r"-?[0-9]+")  # ASCII digits only: str.isdigit() takes '\u00b2', which int() refuses
+V1_LINES_NOTE = ("LINES (line {row}): MoorDyn v1 columns (UnstrLen NumSegs NodeAnch NodeFair), read as the header "
+                 "names them: AttachA = NodeAnch, AttachB = NodeFair (MoorDyn-C 2.x reads LINES by position as v2 "
+                 "columns and would take UnstrLen as AttachA)")
 #: v1 LINE TYPES header names and the quantity MoorDyn-C reads at their positions (7-10)
 V1_NOTE = ("LINE TYPES (line {row}): MoorDyn v1 column names (Can Cat Cdn Cdt); read by position as "
            "MoorDyn-C reads them: the 7th column as Cd (normal drag), the 8th as Ca, the 9th as CdAx, the 10th "
@@ -85,11 +93,12 @@ def _line_types(rows, v1, notes):
         key = f"LINE TYPES.{name}"
         if name in types:
             raise InputError("duplicate line type name", key=_at(number, key))
-        for column, token in zip(("EA", "BA/-zeta"), fields[3:5]):
-            if "|" in token or not is_number(token):
-                refuse("nonlinear", _at(number, f"{key}.{column}"), f"'{token}'")
+        law = is_law(fields[3], fields[4])
         values = {col: _value(tok, number, f"{key}.{col}", LINE_TYPE_CHECKS[col])
-                  for col, tok in zip(TABLE_COLUMNS["LINE TYPES"][1:], fields[1:10])}
+                  for col, tok in zip(TABLE_COLUMNS["LINE TYPES"][1:], fields[1:10])
+                  if not (law and col in ("EA", "BA/-zeta"))}
+        if law:  # read per line (BA = -zeta depends on the line's segments): _line_type
+            values["law"] = (fields[3], fields[4])
         if values["EI"] != 0.0:
             notes.append(f"LINE TYPES.{name}: EI = {values['EI']:g} N m^2: its lines are read on Hermite elements "
                          "(positions and tangents at the nodes), NumSegs elements each, pinned at both ends")
@@ -99,10 +108,16 @@ def _line_types(rows, v1, notes):
     return types
 
 
-def _lines(rows, types, points):
-    """Raw lines in file order: dicts with id, type, ends (point names), length [m], segments, row."""
+def _lines(rows, types, points, v1=(), notes=None):
+    """Raw lines in file order: dicts with id, type, ends (point names), length [m], segments, row.
+    ``v1``: the rows of a v1 header (Line LineType UnstrLen NumSegs NodeAnch NodeFair Flags): its
+    columns are read as it names them."""
     lines, ids = [], set()
+    for row in v1:
+        notes.append(V1_LINES_NOTE.format(row=row))
     for number, fields in rows:
+        if v1:
+            fields = fields[:2] + fields[4:6] + fields[2:4] + fields[6:]
         key = f"LINES.{fields[0]}"
         if fields[0] in ids:
             raise InputError("duplicate line ID", key=_at(number, key))
@@ -121,6 +136,27 @@ def _lines(rows, types, points):
     if not lines:
         raise InputError("the file defines no lines", key="LINES")
     return lines
+
+
+def _syrope_ic(rows, raw_lines, raw_types):
+    """SYROPE IC rows ('Line(s) Tmax0 Tmean0', lines as '1' or '1,2,3') as {line ID: (Tmax0, Tmean0)}
+    and {line ID: row number}; a section without a SYROPE line type is refused (MoorDyn-C does)."""
+    ids = {raw["id"] for raw in raw_lines}
+    initial, where = {}, {}
+    if rows and not any(props.get("law", ("",))[0].startswith("SYROPE:") for _, props in raw_types.values()):
+        raise InputError("a SYROPE IC section, but no line type is a SYROPE rope (EA 'SYROPE:file|EA_Dc|EA_D_Lm')",
+                         key=_at(rows[0][0], "SYROPE IC"))
+    for number, fields in rows:
+        key = _at(number, f"SYROPE IC.{fields[0]}")
+        if len(fields) < 3:
+            raise InputError(f"expected 3 fields 'Line(s) Tmax0 Tmean0', got {len(fields)}", key=key)
+        peak = _value(fields[1], number, f"SYROPE IC.{fields[0]}.Tmax0", v.limited(v.positive, "force"))
+        mean = _value(fields[2], number, f"SYROPE IC.{fields[0]}.Tmean0", v.limited(v.non_negative, "force"))
+        for line_id in fields[0].split(","):
+            if line_id not in ids:
+                raise InputError(f"no line '{line_id}' in LINES", key=key)
+            initial[line_id], where[line_id] = (peak, mean), number
+    return initial, where
 
 
 def _options(rows, notes):
@@ -144,8 +180,6 @@ def _options(rows, notes):
         notes.append(f"OPTIONS ignored by cablefem: {', '.join(ignored)}")
     if "dtm" in values:
         notes.append(f"dtM = {values['dtm']:g} s is MoorDyn's explicit step; the implicit solver keeps its own dt")
-    if values.get("wavekin", 0.0) != 0.0:
-        refuse("WaveKin", _at(numbers["wavekin"], "OPTIONS.WaveKin"), f"WaveKin {raw_option(raw, 'wavekin')}")
     return values, raw, seafloor, numbers
 
 
@@ -168,6 +202,31 @@ def _current_profile(path, options, numbers, notes):
     return profile
 
 
+def _waves(path, options, numbers, depth, gravity, read, notes):
+    """The Sea of ``WaveKin`` 2, 3 or 7 with its files beside the file (``io.moordyn_waves``), or None:
+    WaveKin 0, or ``read`` false (a TOML that wraps the file gives [waves] instead)."""
+    mode = options.get("wavekin", 0.0)
+    if mode == 0.0:
+        return None
+    key = _at(numbers["wavekin"], "OPTIONS.WaveKin")
+    if not read:
+        notes.append(f"WaveKin {mode:g} of {os.path.basename(path)} replaced by the TOML's [waves]")
+        return None
+    sea = read_wave_kin(mode, os.path.dirname(path), depth, gravity, options.get("dtwave", DT_WAVE), key)
+    notes.append(f"WaveKin {mode:g}: {sea.count} wave components from {sea.source}, summed at each point"
+                 + (" (MoorDyn-C interpolates them on water_grid.txt)" if mode != 7.0 else ""))
+    return sea
+
+
+def named_file(value, key, folder):
+    """The path of a data file a MoorDyn file names (``SeafloorFile``): where MoorDyn-C opens it, the
+    name as given, from the working directory; otherwise beside the file (``folder``)."""
+    here = os.path.abspath(os.path.expanduser(value))
+    if not os.path.isabs(value) and os.path.isfile(here):
+        return here
+    return v.existing_file(value, key, folder)
+
+
 def damping_time(ba, ea, mass, length, segments):
     """beta [s] in T = EA (e + beta de/dt) from MoorDyn's BA [N s] or -zeta (per-segment critical ratio)."""
     if ba >= 0:
@@ -175,10 +234,11 @@ def damping_time(ba, ea, mass, length, segments):
     return -ba * (length / segments) * math.sqrt(ea * mass) / ea
 
 
-def read_moordyn(path, simplify=True):
+def read_moordyn(path, simplify=True, waves=True):
     """The Scene of a MoorDyn v2 input file: lines anchor first, flat or gridded seabed, fixed fairleads.
 
-    ``simplify``: replace a planar SeafloorFile grid by its plane (``choose_seabed``).
+    ``simplify``: replace a planar SeafloorFile grid by its plane (``choose_seabed``); ``waves``: read
+    WaveKin and its files (False: a TOML that wraps the file gives its own [waves]).
     """
     path = os.path.abspath(path)
     try:
@@ -187,21 +247,21 @@ def read_moordyn(path, simplify=True):
     except UnicodeDecodeError:
         raise InputError("not a MoorDyn input file (not text)", file=path) from None
     try:
-        return _build(path, text, simplify)
+        return _build(path, text, simplify, waves)
     except InputError as error:
         raise error.within(file=path) from None
 
 
-def _build(path, text, simplify=True):
+def _build(path, text, simplify=True, waves=True):
     """The Scene of MoorDyn file text (errors without the file name; read_moordyn adds it)."""
     notes = []
     found = parse_sections(split_sections(text))
     if not found["LINE TYPES"] and not found["LINES"]:
         raise InputError("no LINE TYPES or LINES section: not a MoorDyn v2 input file")
-    raw_types = _line_types(found["LINE TYPES"], found["v1"], notes)
+    raw_types = _line_types(found["LINE TYPES"], found["v1"].get("LINE TYPES", ()), notes)
     bodies = read_bodies(found["BODIES"], notes)
     points = read_points(found["POINTS"], bodies, notes)
-    raw_lines = _lines(found["LINES"], raw_types, points)
+    raw_lines = _lines(found["LINES"], raw_types, points, found["v1"].get("LINES", ()), notes)
     options, raw_options, seafloor, options_rows = _options(found["OPTIONS"], notes)
     if found["OUTPUTS"]:
         notes.append(f"OUTPUTS ignored: {' '.join(f for _, fields in found['OUTPUTS'] for f in fields)}")
@@ -210,16 +270,21 @@ def _build(path, text, simplify=True):
                               current_profile=_current_profile(path, options, options_rows, notes))
     scene_points = {point.name: point for _, point in points.values()}
     scene_bodies = {body.name: body for _, body in bodies.values()}
-    lines, keys = _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, notes)
+    syrope_ic, syrope_rows = _syrope_ic(found["SYROPE IC"], raw_lines, raw_types)
+    lines, keys = _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, notes, syrope_ic,
+                           syrope_rows)
     if seafloor is not None:
         keys["seabed"] = (path, _at(seafloor[1], "OPTIONS.SeafloorFile"))
-        file = v.existing_file(seafloor[0], keys["seabed"][1], os.path.dirname(path))
+        file = named_file(seafloor[0], keys["seabed"][1], os.path.dirname(path))
         seabed = v.read_seabed_file(file, "grid", keys["seabed"][1])
     elif "wtrdpth" in options:
         keys["seabed"] = (path, _at(options_rows["wtrdpth"], "OPTIONS.WtrDpth"))
         seabed = Horizontal(options["wtrdpth"])
     else:
         raise InputError("missing: needed for the seabed unless SeafloorFile is given", key="OPTIONS.WtrDpth")
+    # MoorDyn-C's waves see WtrDpth, or the seafloor grid's average depth
+    depth = -float(np.mean(seabed.z)) if seafloor is not None else options.get("wtrdpth", 0.0)
+    environment = replace(environment, waves=_waves(path, options, options_rows, depth, get("g"), waves, notes))
     contact = Contact(stiffness=get("kbot"), damping=get("cbot"), damping_when_opening=True)
     seabed, seabed_note = choose_seabed(seabed, lines, simplify)
     friction = _friction(get, lines[0], environment, notes)
@@ -238,7 +303,7 @@ def _build(path, text, simplify=True):
                  bodies=scene_bodies)
 
 
-def _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, notes):
+def _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, notes, syrope_ic=None, syrope_rows=None):
     """The strings of the file's lines (``network.strings``), named ``line1+2`` after their MoorDyn
     lines, and where their scene keys stand in the file: (lines, keys)."""
     rows = {point.name: (number, pid) for pid, (number, point) in points.items()}
@@ -248,7 +313,17 @@ def _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, not
                              key=_at(number, f"POINTS.{pid}"))
     built, parts = {}, []
     for raw in raw_lines:
-        segment = Segment(_line_type(raw, raw_types, built), raw["length"], raw["segments"])
+        line_type = _line_type(raw, raw_types, built, os.path.dirname(path), notes)
+        initial = syrope_ic.get(raw["id"])
+        if initial is not None and (line_type.axial is None or line_type.axial.kind != "syrope"):
+            notes.append(f"SYROPE IC: line {raw['id']} is not a SYROPE rope; its row is ignored (as MoorDyn-C does)")
+            initial = None
+        try:
+            segment = Segment(line_type, raw["length"], raw["segments"], initial)
+        except InputError as error:
+            where = syrope_rows.get(raw["id"], raw["row"])
+            section = "SYROPE IC" if raw["id"] in syrope_rows else "LINES"
+            raise InputError(error.reason, key=_at(where, f"{section}.{raw['id']}")) from None
         a, b = (point_position(scene_points[name], scene_bodies) for name in raw["ends"])
         element = "hermite" if segment.type.EI > 0 else "lagrange"  # bending needs C1 elements
         parts.append(Line(raw["id"], a, b, [segment], ends=tuple(raw["ends"]), element=element))
@@ -279,19 +354,28 @@ def _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, not
     return lines, keys
 
 
-def _line_type(raw, raw_types, built):
+def _line_type(raw, raw_types, built, folder, notes):
     """The LineType of one MoorDyn line (BA < 0 depends on the line's segment length)."""
     number, props = raw_types[raw["type"]]
-    beta = damping_time(props["BA/-zeta"], props["EA"], props["MassDen"], raw["length"], raw["segments"])
-    v.limited(v.number, "damping_time")(beta, _at(number, f"LINE TYPES.{raw['type']}.BA/-zeta (beta)"))
+    key = _at(number, f"LINE TYPES.{raw['type']}")
+    law = None
+    if "law" in props:
+        EA, law = moordyn_law(*props["law"], folder, key, notes, raw["length"] / raw["segments"], props["MassDen"])
+        beta = 0.0
+        same = lambda t: t.axial == law  # noqa: E731
+    else:
+        EA = props["EA"]
+        beta = damping_time(props["BA/-zeta"], props["EA"], props["MassDen"], raw["length"], raw["segments"])
+        v.limited(v.number, "damping_time")(beta, f"{key}.BA/-zeta (beta)")
+        same = lambda t: t.damping == beta  # noqa: E731
     name = raw["type"]
-    if name in built and built[name].damping != beta:
+    if name in built and not same(built[name]):
         name = f"{raw['type']}-line{raw['id']}"
     if name not in built:  # values were checked by _line_types
-        built[name] = LineType(name, props["Diam"], props["MassDen"], props["EA"], beta,
+        built[name] = LineType(name, props["Diam"], props["MassDen"], EA, beta,
                                Cd_normal=props["Cd"], Cd_tangential=math.pi * props["CdAx"],
                                Ca_normal=props["Ca"], Ca_tangential=props["CaAx"], EI=props["EI"],
-                               damping_when_slack=True)  # MoorDyn-C's own law (Line.cpp, Td[i])
+                               damping_when_slack=True, axial=law)  # MoorDyn-C's own law (Line.cpp, Td[i])
     return built[name]
 
 

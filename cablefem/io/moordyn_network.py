@@ -8,7 +8,9 @@ as MoorDyn-C reads them (``MoorDyn2.cpp``: ``readBody``, the POINTS rows, the LI
   Ca (MoorDyn's body drag and added mass) are not modelled: noted.
 - POINTS (ID Attachment X Y Z M V CdA CA, or with FX FY FZ before CdA as MoorDyn-C reads rows of 12):
   Fixed/Anchor/Fix, Coupled/Vessel/Ves/Cpld/Fairlead, Free/Point/Connect/Con, BodyN (fixed to body
-  N, X Y Z in its frame, relative to its reference point).
+  N, X Y Z in its frame, relative to its reference point). FX FY FZ: a steady external force [N] on a
+  free point or a point of a free body (MoorDyn-C's ``pointF``); on a point whose motion is given it
+  changes nothing and is noted.
 - Line ends: a point number, optionally after P/Point/C/Con (``P3``); rod ends (R1A) are refused.
 
 Names: point ID 3 is ``point3``, body 1 ``body1`` in ``Scene.points`` and ``Scene.bodies``.
@@ -34,6 +36,7 @@ _ANGLE = v.limited(v.number, "angle")
 _NON_NEGATIVE = v.limited(v.non_negative, "point_mass")
 _COEFFICIENT = v.limited(v.non_negative, "coefficient")
 _AREA = v.limited(v.non_negative, "area")
+_FORCE = v.limited(v.number, "force")
 _WORD_NUMBER = re.compile(r"([A-Za-z]*)([0-9]*)([A-Za-z]*)")  # MoorDyn's decomposeString, ASCII only
 
 
@@ -125,15 +128,19 @@ def read_points(rows, bodies, notes):
             else ("X", "Y", "Z", "M", "V", "CdA", "CA")
         values = dict(zip(columns, (value(tok, number, f"{key}.{col}", _COORDINATE if col in "XYZ" else v.number)
                                     for col, tok in zip(columns, fields[2:]))))
-        if any(values.get(f, 0.0) for f in ("FX", "FY", "FZ")):
-            refuse("point force", at(number, f"{key}.FX"))
+        force = [values.get(f, 0.0) for f in ("FX", "FY", "FZ")]
         for col, check in (("M", _NON_NEGATIVE), ("V", v.limited(v.non_negative, "volume")),
-                           ("CdA", _AREA), ("CA", _COEFFICIENT)):
-            check(values[col], at(number, f"{key}.{col}"))
+                           ("CdA", _AREA), ("CA", _COEFFICIENT), ("FX", _FORCE), ("FY", _FORCE), ("FZ", _FORCE)):
+            if col in values:
+                check(values[col], at(number, f"{key}.{col}"))
+        moved = kind != "free" and (body is None or bodies[int(digits)][1].kind != "free")
+        if any(force) and moved:
+            notes.append(f"POINTS.{pid}: FX FY FZ of a point whose motion is given ignored (it moves as given)")
+            force = [0.0, 0.0, 0.0]
         if kind != "free" and body is None and (values["M"] or values["V"] or values["CdA"]):
             notes.append(f"POINTS.{pid}: M, V and CdA of a {kind} point ignored (its motion is given)")
         point = Point(point_name(pid), kind, [values["X"], values["Y"], values["Z"]], values["M"], values["V"],
-                      values["CdA"], values["CA"], body)
+                      values["CdA"], values["CA"], body, force)
         points[pid] = (number, point)
     return points
 

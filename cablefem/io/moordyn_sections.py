@@ -19,6 +19,7 @@ SECTION_KEYWORDS = (
     (("POINTS", "POINT LIST", "POINT PROPERTIES", "CONNECTION PROPERTIES", "NODE PROPERTIES"), "POINTS"),
     (("LINES", "LINE LIST", "LINE PROPERTIES"), "LINES"),
     (("FAILURE",), "FAILURE"),
+    (("SYROPE IC",), "SYROPE IC"),
     (("OPTIONS",), "OPTIONS"),
     (("OUTPUT",), "OUTPUTS"),
 )
@@ -33,8 +34,9 @@ TABLE_COLUMNS = {
 #: Cdt, Cat whatever the header says), and so does cablefem, with a note
 V1_LINE_TYPE_COLUMNS = {"CAN", "CAT", "CDN", "CDT"}
 #: column names that only the MoorDyn v1 LINES table has: its columns are in another order
-#: (UnstrLen NumSegs NodeAnch NodeFair), which MoorDyn-C v2 does not read either
+#: (Line LineType UnstrLen NumSegs NodeAnch NodeFair Flags), read as the header names them
 V1_LINE_COLUMNS = {"NODEANCH", "NODEFAIR"}
+V1_COLUMNS = {"LINE TYPES": V1_LINE_TYPE_COLUMNS, "LINES": V1_LINE_COLUMNS}
 
 #: What cablefem refuses in a MoorDyn file: construct -> (what it is, what to do instead). The one
 #: list; docs/scene.md ("What stays refused") has the same table.
@@ -44,20 +46,15 @@ REFUSED = {
     "ROD TYPES": ("ROD TYPES (properties of RODS)",
                   "model a rod as a short stiff line between two points, or fix its line ends to a body"),
     "FAILURE": ("FAILURE (line breakage during a run)", "run the intact and the broken system as two scenes"),
-    "WaveKin": ("wave kinematics (WaveKin other than 0)",
-                "set WaveKin 0 and prescribe the platform's motion ([motion], or a coupled body's motion in "
-                "a TOML that wraps the file); cablefem has no wave loads on lines"),
+    "WaveKin": ("wave kinematics other than WaveKin 0, 2, 3 and 7 (1: set through MoorDyn's API; 4 to 6: not "
+                "implemented in MoorDyn-C either)",
+                "give the waves as [waves] in a TOML that wraps the file, or write them as wave_frequencies.txt "
+                "with WaveKin 7"),
     "Currents": ("a time-varying or gridded current (Currents 2 to 5)",
                  "give a steady profile: Currents 1 with current_profile.txt, or [environment] current_profile "
                  "in a TOML that wraps the file"),
-    "nonlinear": ("a nonlinear or viscoelastic EA or BA (a curve file or 'a|b' values)",
-                  "give constant EA and BA (EA: the slope of the curve at the working tension)"),
     "turbine": ("points on a FAST.Farm turbine (TurbineN, MoorDyn-F)",
                 "attach them to a coupled body (BodyN) of BODIES, or make them Coupled points"),
-    "point force": ("a steady external force on a point (the FX FY FZ columns)",
-                    "leave FX FY FZ at 0 and give the load as the point's mass or volume"),
-    "v1 LINES": ("the MoorDyn v1 LINES columns (NodeAnch NodeFair)",
-                 "write the v2 columns ID LineType AttachA AttachB UnstrLen NumSegs Outputs"),
 }
 
 
@@ -102,15 +99,13 @@ def split_sections(text):
 
 def _table_rows(section, rows, v1):
     """Data rows of a table section: up to two leading column-name/unit rows are dropped (a v1
-    LINE TYPES header's row number is added to ``v1``)."""
+    LINE TYPES or LINES header's row number is added to ``v1[section]``)."""
     skipped = 0
     while skipped < min(2, len(rows)) and not any(is_number(f) for f in rows[skipped][1]):
         number, fields = rows[skipped]
         names = {f.upper() for f in fields}
-        if section == "LINES" and V1_LINE_COLUMNS & names:
-            refuse("v1 LINES", at(number, section), f"({' '.join(fields)})")
-        if section == "LINE TYPES" and V1_LINE_TYPE_COLUMNS & names:
-            v1.append(number)
+        if names & V1_COLUMNS.get(section, set()):
+            v1.setdefault(section, []).append(number)
         skipped += 1
     columns = TABLE_COLUMNS[section]
     for number, fields in rows[skipped:]:
@@ -122,8 +117,9 @@ def _table_rows(section, rows, v1):
 
 def parse_sections(sections):
     """Raw tables of a split file by section (LINE TYPES, BODIES, POINTS, LINES: rows of fields;
-    OPTIONS, OUTPUTS: rows) and "v1": the rows of v1 LINE TYPES headers."""
-    found = {"LINE TYPES": [], "BODIES": [], "POINTS": [], "LINES": [], "OPTIONS": [], "OUTPUTS": [], "v1": []}
+    OPTIONS, OUTPUTS: rows) and "v1": {section: the rows of its v1 headers} (LINE TYPES, LINES)."""
+    found = {"LINE TYPES": [], "BODIES": [], "POINTS": [], "LINES": [], "OPTIONS": [], "OUTPUTS": [], "v1": {},
+             "SYROPE IC": []}
     recognised = False
     for name, title, number, rows in sections:
         if name is None:
@@ -137,6 +133,8 @@ def parse_sections(sections):
             found[name] += _table_rows(name, rows, found["v1"])
         elif name in ("OPTIONS", "OUTPUTS"):
             found[name] += rows
+        elif name == "SYROPE IC":  # up to two rows of column names and units, then 'Line(s) Tmax0 Tmean0'
+            found[name] += [(n, f) for n, f in rows if len(f) >= 2 and is_number(f[1])]
         elif any(sum(is_number(f) for f in fields) >= 1 for _, fields in rows):
             refuse(name, at(number, name))
     return found

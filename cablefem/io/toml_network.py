@@ -17,7 +17,7 @@ _COORDINATE = v.limited(v.vector3, "coordinate")
 _MASS = v.limited(v.non_negative, "point_mass")
 POINT_KEYS = {"kind": v.choice(("fixed", "coupled", "free")), "position": _COORDINATE, "mass": _MASS,
               "volume": v.limited(v.non_negative, "volume"), "CdA": v.limited(v.non_negative, "area"),
-              "Ca": v.limited(v.non_negative, "coefficient"), "body": v.text}
+              "Ca": v.limited(v.non_negative, "coefficient"), "body": v.text, "force": v.limited(v.vector3, "force")}
 BODY_KEYS = {"kind": v.choice(("fixed", "coupled", "free")), "position": _COORDINATE,
              "rotation_deg": v.limited(v.vector3, "angle"), "mass": _MASS,
              "inertia": v.limited(v.vector3, "inertia"), "cg": _COORDINATE,
@@ -53,9 +53,14 @@ def read_points(raw, bodies):
                              key=f"{prefix}.kind")
         if body is not None and "kind" in values:
             raise InputError("a point on a body moves with it: leave out kind", key=f"{prefix}.kind")
+        moved = values.get("kind", "fixed") != "free" if body is None else bodies[body].kind != "free"
+        if moved and any(values.get("force", (0.0, 0.0, 0.0))):
+            raise InputError("a force acts on a free point or a point of a free body; this point moves as given, "
+                             "so a force on it would change nothing", key=f"{prefix}.force")
         try:
             points[name] = Point(name, values.get("kind", "fixed"), values["position"], values.get("mass", 0.0),
-                                 values.get("volume", 0.0), values.get("CdA", 0.0), values.get("Ca", 0.0), body)
+                                 values.get("volume", 0.0), values.get("CdA", 0.0), values.get("Ca", 0.0), body,
+                                 values.get("force", (0.0, 0.0, 0.0)))
         except InputError as error:
             raise error.within(prefix=prefix) from None
     return points

@@ -12,7 +12,6 @@ that is planar becomes its plane unless ``[seabed] simplify = false``
 
 import math
 import os
-import re
 from dataclasses import replace
 
 try:
@@ -20,22 +19,21 @@ try:
 except ModuleNotFoundError:  # Python 3.10
     import tomli as tomllib
 
-import numpy as np
-
 from cablefem.errors import InputError
 from cablefem.geometry import Horizontal, Plane, choose_seabed
-from cablefem.geometry.readers import MAX_COORDINATE, parse_number
+from cablefem.geometry.readers import MAX_COORDINATE
 from cablefem.model.line import ELEMENTS, Line, LineType, Segment
 from cablefem.dynamics.registry import INTEGRATORS
 from cablefem.model.scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
-from cablefem.io import validate as v
+from cablefem.io import axial_input, validate as v
 from cablefem.io.currents import current_profile_setting
 from cablefem.io.moordyn_input import BODY_NO_MOTION_NOTE, NO_MOTION_NOTE, read_moordyn
 from cablefem.io.toml_network import body_motions, end, read_bodies, read_points
+from cablefem.io.waves import read_waves
 from cablefem.model.network import point_position, strings as network_strings
 
 TOP_LEVEL_KEYS = ("name", "environment", "line_types", "lines", "seabed", "friction",
-                  "motion", "solver", "output", "moordyn", "points", "bodies")
+                  "motion", "solver", "output", "moordyn", "points", "bodies", "waves")
 SEABED_KINDS = ("horizontal", "plane", "grid", "mesh", "points")
 #: the key that places each kind of seabed (named by the scene-level checks)
 SEABED_KEY = {"horizontal": "depth", "plane": "point", "grid": "file", "mesh": "file", "points": "file"}
@@ -60,18 +58,21 @@ _POINT = v.limited(v.vector3, "coordinate")
 _LENGTH = v.limited(v.positive, "length")
 _ORDER = v.limited(v.whole, "order")
 _ELEMENTS = v.limited(v.whole, "nodes")
-ENVIRONMENT_KEYS = {"water_density": v.limited(v.positive, "water_density"),
-                    "gravity": v.limited(v.positive, "gravity"), "current": v.limited(v.vector3, "speed"),
+ENVIRONMENT_KEYS = {"water_density": v.limited(v.non_negative, "water_density"),
+                    "gravity": v.limited(v.non_negative, "gravity"), "current": v.limited(v.vector3, "speed"),
                     "current_profile": lambda value, key: value}  # a file or a table: _environment
 LINE_TYPE_KEYS = {"diameter": v.limited(v.positive, "diameter"), "mass": v.limited(v.positive, "mass"),
-                  "EA": v.limited(v.positive, "EA"), "damping": v.limited(v.non_negative, "damping_time"),
+                  "EA": axial_input.toml_stiffness, "damping": v.limited(v.non_negative, "damping_time"),
+                  "BA": axial_input.toml_damping, "EA_dynamic": v.limited(v.positive, "EA"),
+                  "EA_dynamic_slope": v.limited(v.non_negative, "slope"),
+                  "BA_dynamic": v.limited(v.non_negative, "internal_damping"), "syrope": axial_input.toml_syrope,
                   "Cd_normal": _COEFFICIENT, "Cd_tangential": _COEFFICIENT, "Ca_normal": _COEFFICIENT,
                   "Ca_tangential": _COEFFICIENT, "damping_when_slack": v.boolean,
                   "nominal_diameter": v.limited(v.positive, "diameter"), "EI": v.limited(v.non_negative, "EI")}
 LINE_KEYS = {"name": v.text, "anchor": lambda value, key: value, "fairlead": lambda value, key: value,
              "segments": v.tables, "order": _ORDER, "quadrature_points": v.whole,  # an end: coordinates or a point's name (toml_network.end)
              "element": v.choice(ELEMENTS), "anchor_tangent": v.vector3, "fairlead_tangent": v.vector3}
-SEGMENT_KEYS = {"type": v.text, "length": _LENGTH, "elements": _ELEMENTS}
+SEGMENT_KEYS = {"type": v.text, "length": _LENGTH, "elements": _ELEMENTS, "syrope": axial_input.toml_initial}
 CONTACT_KEYS = {"stiffness": v.limited(v.positive, "stiffness"),
                 "damping_ratio": v.limited(v.non_negative, "damping_ratio"),
                 "damping": v.limited(v.non_negative, "contact_damping"), "damping_when_opening": v.boolean}
@@ -144,6 +145,8 @@ def read_toml_scene(path, data=None):
     if kind is not None:  # the TOML's seabed replaces the MoorDyn file's
         keys["seabed"] = (path, f"seabed.{SEABED_KEY.get(kind, 'kind')}")
     seabed, seabed_note = choose_seabed(seabed, lines, simplify)
+    if "waves" in data:  # the TOML's waves replace a MoorDyn file's
+        environment = replace(environment, waves=read_waves(data["waves"], folder, seabed, environment.gravity))
     friction = replace(base.friction if base else Friction(),
                        **_section(data, "friction", FRICTION_KEYS))
     motion = _motion(data["motion"], folder) if "motion" in data else Motion()
@@ -194,7 +197,8 @@ def _moordyn_base(data, path):
                              key=key)
     values = v.pick(v.table(data["moordyn"], "moordyn"), "moordyn", MOORDYN_KEYS, required=("file",))
     file = v.existing_file(values["file"], "moordyn.file", folder)
-    base = read_moordyn(file, simplify=False)  # the TOML's [seabed] simplify decides
+    # the TOML's [seabed] simplify decides; its [waves] replace the file's WaveKin and its files
+    base = read_moordyn(file, simplify=False, waves="waves" not in data)
     lines = base.lines
     if "elements" in values:
         lines = [line.with_elements(values["elements"]) for line in lines]
@@ -217,7 +221,10 @@ def _line_types(raw):
         prefix = f"line_types.{name}"
         values = v.pick(v.table(entry, prefix), prefix, LINE_TYPE_KEYS, required=("diameter", "mass", "EA"))
         try:
-            types[name] = LineType(name, **values)
+            EA, law, beta = axial_input.law_of(values)
+            if beta is not None:
+                values["damping"] = beta
+            types[name] = LineType(name, EA=EA, axial=law, **values)
         except InputError as error:
             raise error.within(prefix=prefix) from None
     if not types:
@@ -245,7 +252,11 @@ def _lines(raw, types, points=None, bodies=None):
             if kind not in types:
                 raise InputError(f"unknown line type '{kind}'{v.suggest(kind, types)}; "
                                  f"defined in [line_types]: {', '.join(types)}", key=f"{seg_prefix}.type")
-            segments.append(Segment(types[kind], seg_values["length"], seg_values["elements"]))
+            try:
+                segments.append(Segment(types[kind], seg_values["length"], seg_values["elements"],
+                                        seg_values.get("syrope")))
+            except InputError as error:
+                raise error.within(prefix=seg_prefix) from None
         (anchor, a), (fairlead, b) = (end(values[key], f"{prefix}.{key}", points) for key in ("anchor", "fairlead"))
         anchor = anchor if a is None else point_position(points[a], bodies)
         fairlead = fairlead if b is None else point_position(points[b], bodies)
@@ -346,31 +357,10 @@ def read_motion_table(path, key):
     A header row ``t,x,y,z`` is optional; separators may be commas, semicolons
     or blanks; ``#`` starts a comment line. Times must strictly increase.
     """
-    name = os.path.basename(path)
-    rows = v.read_rows(path, key)
-    table = []
-    for number, row in enumerate(rows, start=1):
-        fields = [f for f in re.split(r"[,;\s]+", row.strip()) if f]
-        if not fields or fields[0].startswith("#"):
-            continue
-        if not table and [f.lower() for f in fields] == ["t", "x", "y", "z"]:
-            continue
-        if len(fields) != 4:
-            raise InputError(f"{name} line {number}: expected 4 columns t, x, y, z, got {len(fields)}", key=key)
-        values = [parse_number(f) for f in fields]
-        if None in values:
-            raise InputError(f"{name} line {number}: expected numbers t, x, y, z, got '{row.strip()}'",
-                             key=key)
-        if not all(math.isfinite(x) for x in values):
-            raise InputError(f"{name} line {number}: values must be finite, got '{row.strip()}'", key=key)
+    def limit(name, number, row, values):
         if max(abs(x) for x in values[1:]) > MAX_COORDINATE:
             raise InputError(f"{name} line {number}: a displacement beyond the sane limit of "
                              f"{MAX_COORDINATE:g} m, got '{row.strip()}'", key=key)
-        if table and values[0] <= table[-1][1][0]:
-            raise InputError(f"{name} line {number}: times must strictly increase "
-                             f"(t = {values[0]:g} after t = {table[-1][1][0]:g})", key=key)
-        table.append((number, values))
-    if len(table) < 2:
-        raise InputError(f"{name}: needs at least 2 rows t, x, y, z, got {len(table)}", key=key)
-    data = np.array([values for _, values in table])
+
+    data = v.read_time_table(path, key, ("t", "x", "y", "z"), 2, check=limit)
     return data[:, 0], data[:, 1:]

@@ -8,6 +8,7 @@ unknown keys (suggesting the closest valid one) and reported missing ones.
 import difflib
 import math
 import os
+import re
 import unicodedata
 
 import numpy as np
@@ -28,6 +29,8 @@ LIMITS = {
     "EA": (1e13, "N", "the stiffest real lines are ~1e10-1e11 N"),
     "EI": (1e13, "N m^2", "steel risers and umbilicals are ~1e4-1e8 N m^2"),
     "damping_time": (1e6, "s", "beta is ~1e-3 to 1 s"),
+    "internal_damping": (1e13, "N s", "MoorDyn's BA of synthetic ropes' slow parts is ~1e9-1e11 N s"),
+    "slope": (1e4, "", "a rope's EA_D_Lm (dynamic stiffness per mean tension) is ~0.1-100"),
     "coefficient": (1e3, "", "drag and added-mass coefficients are ~0.1 to 10"),
     "water_density": (1e5, "kg/m^3", "sea water is 1025 kg/m^3"),
     "gravity": (1e3, "m/s^2", "g is 9.81 m/s^2"),
@@ -314,6 +317,40 @@ def folder(value, key):
     if len(value.encode("utf-8")) > MAX_PATH_BYTES:
         raise InputError(f"is longer than the {MAX_PATH_BYTES} bytes a path may hold", key=key)
     return value
+
+
+def read_time_table(path, key, columns, least, check=None):
+    """Rows of numbers (k, len(columns)) of a text table whose first column is a strictly increasing
+    time: separators commas, semicolons or blanks, ``#`` starts a comment line, an optional header row
+    naming the ``columns``; at least ``least`` rows. ``check(name, number, row, values)`` may refuse a
+    row. Errors name the file's line."""
+    from cablefem.geometry.readers import parse_number
+
+    name, listed = os.path.basename(path), ", ".join(columns)
+    table = []
+    for number, row in enumerate(read_rows(path, key), start=1):
+        fields = [f for f in re.split(r"[,;\s]+", row.strip()) if f]
+        if not fields or fields[0].startswith("#"):
+            continue
+        if not table and [f.lower() for f in fields] == [c.lower() for c in columns]:
+            continue
+        if len(fields) != len(columns):
+            raise InputError(f"{name} line {number}: expected {len(columns)} columns {listed}, got {len(fields)}",
+                             key=key)
+        values = [parse_number(f) for f in fields]
+        if None in values:
+            raise InputError(f"{name} line {number}: expected numbers {listed}, got '{row.strip()}'", key=key)
+        if not all(math.isfinite(x) for x in values):
+            raise InputError(f"{name} line {number}: values must be finite, got '{row.strip()}'", key=key)
+        if check is not None:
+            check(name, number, row, values)
+        if table and values[0] <= table[-1][0]:
+            raise InputError(f"{name} line {number}: times must strictly increase "
+                             f"(t = {values[0]:g} after t = {table[-1][0]:g})", key=key)
+        table.append(values)
+    if len(table) < least:
+        raise InputError(f"{name}: needs at least {least} rows {listed}, got {len(table)}", key=key)
+    return np.array(table)
 
 
 def read_rows(path, key):

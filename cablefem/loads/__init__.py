@@ -29,7 +29,8 @@ class State:
     ``old[name]`` and writes its trial values to ``new[name]``.
     handed: what a load hands to the loads after it at these points, under its name (the numpy
     twin of its scratch in the compiled point context; ``LoadSpec.reads``): the contact's
-    ``NormalForce``, which friction reads.
+    ``NormalForce``, which friction reads. inv_h: 1 / the size [1/s] of the step being taken (0 in
+    statics), for a load whose history evolves in time (``cablefem.loads.rope``).
     """
 
     r: np.ndarray
@@ -43,6 +44,7 @@ class State:
     old: np.ndarray | None = None
     new: np.ndarray | None = None
     handed: dict = field(default_factory=dict)
+    inv_h: float = 0.0
     ddr: np.ndarray | None = None
     X: np.ndarray | None = None
 

@@ -85,9 +85,12 @@ def added_mass_point(ctx, p, old, new, state, hold, out):
 
 
 def build(setting):
-    """Added mass in dynamics, when an added-mass coefficient is not zero."""
+    """Added mass in dynamics, when an added-mass coefficient is not zero (in waves
+    ``cablefem.loads.morison`` has it)."""
     props = setting.props
     if not setting.dynamic or not (np.any(props["Ca_normal"] > 0) or np.any(props["Ca_tangential"] > 0)):
+        return None
+    if setting.environment.waves is not None:
         return None
     return AddedMass(props["diameter"], props["Ca_normal"], props["Ca_tangential"], setting.environment.water_density)
 

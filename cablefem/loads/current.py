@@ -129,3 +129,18 @@ def current_at(z, n, heights, velocity, U, slope):
     for a in range(3):
         U[a] = velocity[i - 1, a] * (1.0 - f) + velocity[i, a] * f
         slope[a] = (velocity[i, a] - velocity[i - 1, a]) / width
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def relative_water(ctx, n, uniform, heights, velocity, current, slope, w):
+    """In waves: the water's velocity relative to the point, w = U(z) + u_w - v, into ``w`` (3,), with the
+    current U (``uniform`` (3,) when ``n`` is 0, else the profile's) into ``current`` and dU/dz into
+    ``slope`` (zero for a uniform current); u_w, v and z are the context's (``cablefem.compiled.kernels``)."""
+    slope[0], slope[1], slope[2] = 0.0, 0.0, 0.0
+    if n == 0:
+        for a in range(3):
+            current[a] = uniform[a]
+    else:
+        current_at(ctx.r[2], n, heights, velocity, current, slope)
+    for a in range(3):
+        w[a] = current[a] + ctx.water_u[a] - ctx.v[a]

@@ -54,6 +54,27 @@ def quadratic(w):
     return speed * w, derivative
 
 
+def relative_drag(u, t, normal, tangential, jacobian=True):
+    """Morison drag per unit stretched length h = Dn |u_n| u_n + Dt |u.t| (u.t) t (3, nel, nq) of the
+    relative velocity u (3, nel, nq) at unit tangents t, Dn, Dt = normal, tangential (nel, 1) [kg/m^2];
+    with ``jacobian`` also dh/du and dh/dt (3, 3, nel, nq) (None otherwise)."""
+    along = np.einsum("ceq,ceq->eq", u, t)
+    u_normal = u - along * t
+    g_normal, dg_normal = quadratic(u_normal)
+    per_stretched = normal * g_normal + tangential * np.abs(along) * along * t
+    if not jacobian:
+        return per_stretched, None, None
+    eye = identity_like(t)
+    tangential_projector = outer(t, t)
+    normal_projector = eye - tangential_projector
+    dnormal = normal * dg_normal
+    dh_du = compose(dnormal, normal_projector) + 2.0 * tangential * np.abs(along) * tangential_projector
+    # d u_n/dt = -(t u^T + (u . t) I); d(|u.t| (u.t) t)/dt = |u.t| (2 t u^T + (u.t) I)
+    t_u = outer(t, u)
+    dh_dt = -compose(dnormal, t_u + along * eye) + tangential * np.abs(along) * (2.0 * t_u + along * eye)
+    return per_stretched, dh_du, dh_dt
+
+
 class Drag:
     """Morison drag: diameter d [m], Cd_normal, Cd_tangential [-] per element (nel,),
     water density rho [kg/m^3] and uniform current U [m/s] (3,), or a ``CurrentProfile``
@@ -74,34 +95,19 @@ class Drag:
     def evaluate(self, state, jacobian=True):
         if state.v is None:
             return Terms()
-        dr = state.dr
-        t, stretch, _ = unit_tangent(dr)
+        t, stretch, _ = unit_tangent(state.dr)
         if self.profile is None:
             u = self.current - state.v
         else:
             U, slope = self.profile.at(state.r[2])
             u = U - state.v
-        along = np.einsum("ceq,ceq->eq", u, t)
-        u_normal = u - along * t
-        g_normal, dg_normal = quadratic(u_normal)
-        per_stretched = self.normal * g_normal + self.tangential * np.abs(along) * along * t
+        per_stretched, dh_du, dh_dt = relative_drag(u, t, self.normal, self.tangential, jacobian)
         terms = Terms(force=stretch * per_stretched)
         if not jacobian:
             return terms
-        eye = identity_like(t)
-        tangential_projector = outer(t, t)
-        normal_projector = eye - tangential_projector
-        dnormal = self.normal * dg_normal
-        # h(u, t) = per_stretched; dh/du with du/dv = -I
-        dh_du = compose(dnormal, normal_projector) \
-            + 2.0 * self.tangential * np.abs(along) * tangential_projector
         terms.force_v = -stretch * dh_du
-        # d u_n/dt = -(t u^T + (u . t) I); d(|u.t| (u.t) t)/dt = |u.t| (2 t u^T + (u.t) I)
-        t_u = outer(t, u)
-        dh_dt = -compose(dnormal, t_u + along * eye) \
-            + self.tangential * np.abs(along) * (2.0 * t_u + along * eye)
         # f = |r'| h(u, t(r')): d|r'|/dr' = t^T, dt/dr' = (I - t t^T)/|r'|
-        terms.force_dr = outer(per_stretched, t) + compose(dh_dt, normal_projector)
+        terms.force_dr = outer(per_stretched, t) + compose(dh_dt, identity_like(t) - outer(t, t))
         if self.profile is not None:  # U(z): df/dr = |r'| dh/du dU/dz e_z^T
             terms.force_r = np.zeros_like(dh_du)
             terms.force_r[:, 2] = stretch * np.einsum("ab...,b...->a...", dh_du, slope)
@@ -159,9 +165,11 @@ def drag_point(ctx, p, old, new, state, hold, out):
 
 
 def build(setting):
-    """Drag in dynamics, when a drag coefficient is not zero."""
+    """Drag in dynamics, when a drag coefficient is not zero (in waves ``cablefem.loads.morison`` has it)."""
     props, env = setting.props, setting.environment
     if not setting.dynamic or not (np.any(props["Cd_normal"] > 0) or np.any(props["Cd_tangential"] > 0)):
+        return None
+    if env.waves is not None:
         return None
     return Drag(props["diameter"], props["Cd_normal"], props["Cd_tangential"], env.water_density, env.current,
                 profile=env.current_profile)

@@ -178,9 +178,12 @@ def tension_hold(base, state, hold, p, again):
 
 
 def build(setting):
-    """Every line carries its tension, with each line type's damping law; a line type that bends pushes."""
+    """Every line carries its tension, with each line type's damping law (EA = 0 on the elements of
+    a line type with an axial law of its own: ``cablefem.loads.rope`` carries them); a line type
+    that bends pushes."""
     props = setting.props
-    return Tension(props["EA"], props["damping"], slack_damping=props["damping_when_slack"], rod=props["EI"] > 0.0)
+    return Tension(props["EA"] * ~props["rope"], props["damping"], slack_damping=props["damping_when_slack"],
+                   rod=props["EI"] > 0.0)
 
 
 SPEC = LoadSpec("tension", "reduced", (("EA", "f8"), ("beta", "f8"), ("pushes", "?"), ("slack_damping", "?")),

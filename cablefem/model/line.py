@@ -11,6 +11,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from cablefem.errors import InputError
+from cablefem.model.axial import AxialLaw
 
 #: Gauss points per element a line may ask for (``Line.quadrature_points``): 16 integrate the
 #: touchdown's kink to ~4e-5 of the contact force, 8 to ~8e-5 (tests/test_quadrature_points.py);
@@ -57,8 +58,10 @@ class LineType:
     ``damping_when_slack``, MoorDyn-C's law T = EA (max(e, 0) + beta de/dt): the damping part acts in
     slack segments too (``cablefem.loads.tension``). ``nominal_diameter`` is the chain's bar
     diameter d_b [m] that the soil's resistance scales with (rui2025 Eq. 3; None: not given, and
-    a scene with ``[soil]`` refuses it). ``EI`` is the bending stiffness [N m^2]
-    (``cablefem.loads.bending``; > 0 needs a line on Hermite elements).
+    a scene with ``[soil]`` refuses it). ``axial``: another axial law (``cablefem.model.axial``: a
+    strain-tension table, a viscoelastic rope, SYROPE; ``cablefem.loads.rope``), with ``EA`` its
+    reference stiffness (``AxialLaw.reference_EA``) and its own damping (``damping`` 0). ``EI`` is
+    the bending stiffness [N m^2] (``cablefem.loads.bending``; > 0 needs a line on Hermite elements).
     """
 
     name: str
@@ -72,6 +75,7 @@ class LineType:
     Ca_tangential: float = 0.0
     damping_when_slack: bool = False
     nominal_diameter: float | None = None
+    axial: AxialLaw | None = None
     EI: float = 0.0
 
     def __post_init__(self):
@@ -83,6 +87,9 @@ class LineType:
             object.__setattr__(self, key, _positive(getattr(self, key), key, allow_zero=True))
         if not isinstance(self.damping_when_slack, (bool, np.bool_)):
             raise InputError(f"expected true or false, got {self.damping_when_slack!r}", key="damping_when_slack")
+        if self.axial is not None and self.damping != 0.0:
+            raise InputError("with a nonlinear or viscoelastic EA the internal damping is BA [N s] (and BA_dynamic), "
+                             "not beta", key="damping")
 
     @property
     def area(self):
@@ -96,11 +103,14 @@ class LineType:
 
 @dataclass(frozen=True)
 class Segment:
-    """A stretch of one line type: unstretched ``length`` [m] over ``elements`` elements."""
+    """A stretch of one line type: unstretched ``length`` [m] over ``elements`` elements;
+    ``syrope``: the highest and the present mean tension (Tmax0, Tmean0) [N] of a SYROPE rope
+    (MoorDyn's SYROPE IC), None otherwise."""
 
     type: LineType
     length: float
     elements: int
+    syrope: tuple | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "length", _positive(self.length, "length"))
@@ -108,6 +118,20 @@ class Segment:
             raise InputError(f"expected a whole number, got {self.elements!r}", key="elements")
         if self.elements < 1:
             raise InputError(f"must be at least 1, got {self.elements}", key="elements")
+        law = self.type.axial
+        needs = law is not None and law.kind == "syrope"
+        if needs and self.syrope is None:
+            raise InputError(f"line type '{self.type.name}' is a SYROPE rope: its segment needs its initial "
+                             "condition, syrope = { Tmax = ..., Tmean = ... } [N] (MoorDyn's SYROPE IC)", key="syrope")
+        if self.syrope is not None:
+            if not needs:
+                raise InputError(f"line type '{self.type.name}' is not a SYROPE rope: it takes no SYROPE initial "
+                                 "condition", key="syrope")
+            peak, mean = (float(value) for value in self.syrope)
+            law.check_peak(peak, "syrope.Tmax")
+            if not 0.0 <= mean <= peak:
+                raise InputError(f"must lie in [0, Tmax = {peak:g}] N, got {mean:g}", key="syrope.Tmean")
+            object.__setattr__(self, "syrope", (peak, mean))
 
 
 @dataclass(frozen=True)
@@ -115,22 +139,25 @@ class Joint:
     """A point of a line at a vertex (a segment boundary or an end): a clump weight, a buoy, a
     connector. ``mass`` [kg] in air, ``volume`` [m^3] displaced (a sphere, for the part of it below
     the water surface), ``CdA`` [m^2] drag coefficient times area and ``Ca`` the added-mass
-    coefficient of that volume, both isotropic, as MoorDyn's points (``cablefem.loads.points``)."""
+    coefficient of that volume, both isotropic, as MoorDyn's points (``cablefem.loads.points``);
+    ``force`` (3,) [N] a steady external force on it (MoorDyn's FX FY FZ)."""
 
     name: str
     mass: float = 0.0
     volume: float = 0.0
     CdA: float = 0.0
     Ca: float = 0.0
+    force: tuple = (0.0, 0.0, 0.0)
 
     def __post_init__(self):
         for key in ("mass", "volume", "CdA", "Ca"):
             object.__setattr__(self, key, _positive(getattr(self, key), key, allow_zero=True))
+        object.__setattr__(self, "force", tuple(float(f) for f in _point(self.force, "force")))
 
     @property
     def loaded(self):
-        """Whether the point adds any force (a massless, volumeless joint adds none)."""
-        return bool(self.mass or self.volume or self.CdA)
+        """Whether the point adds any force (a massless, volumeless, unforced joint adds none)."""
+        return bool(self.mass or self.volume or self.CdA or any(self.force))
 
 
 @dataclass(frozen=True)
@@ -261,7 +288,7 @@ class Line:
             return self
         left = int(np.clip(round(seg.elements * (s - a) / (b - a)), 1, max(1, seg.elements - 1)))
         right = max(1, seg.elements - left)
-        pieces = (Segment(seg.type, s - a, left), Segment(seg.type, b - s, right))
+        pieces = (Segment(seg.type, s - a, left, seg.syrope), Segment(seg.type, b - s, right, seg.syrope))
         segments = self.segments[:i] + pieces + self.segments[i + 1:]
         joints = tuple((k + 1 if k > i else k, joint) for k, joint in self.joints)
         return replace(self, segments=segments, joints=joints)
@@ -281,12 +308,11 @@ class Line:
     def with_types(self, change):
         """The same line with every segment's line type replaced by ``change(type)`` (a switch of one
         property, e.g. ``lambda t: replace(t, EA=2 * t.EA)``)."""
-        return replace(self, segments=tuple(Segment(change(seg.type), seg.length, seg.elements)
-                                            for seg in self.segments))
+        return replace(self, segments=tuple(replace(seg, type=change(seg.type)) for seg in self.segments))
 
     def with_elements(self, elements):
         """The same line with ``elements`` elements spread over the segments by length."""
         total = self.unstretched_length
         counts = [max(1, round(elements * seg.length / total)) for seg in self.segments]
-        segments = tuple(Segment(seg.type, seg.length, n) for seg, n in zip(self.segments, counts))
+        segments = tuple(replace(seg, elements=n) for seg, n in zip(self.segments, counts))
         return replace(self, segments=segments)

@@ -53,7 +53,9 @@ def _kind(value, key):
 @dataclass(frozen=True)
 class Point:
     """A point of a network. ``position`` [m]: in the scene's frame, or on a body in the body's
-    frame relative to its reference point; for a free point the start of its search."""
+    frame relative to its reference point; for a free point the start of its search. ``force``
+    (3,) [N]: a steady external force on a free point or a point of a free body (MoorDyn's FX FY
+    FZ; a fixed or coupled point's motion is given, and a force on it changes nothing)."""
 
     name: str
     kind: str
@@ -63,16 +65,18 @@ class Point:
     CdA: float = 0.0
     Ca: float = 0.0
     body: str | None = None
+    force: np.ndarray = field(default_factory=lambda: np.zeros(3))
 
     def __post_init__(self):
         object.__setattr__(self, "kind", _kind(self.kind, f"points.{self.name}.kind"))
         object.__setattr__(self, "position", _vector(self.position, 3, f"points.{self.name}.position"))
-        Joint(self.name, self.mass, self.volume, self.CdA, self.Ca)  # the same checks
+        object.__setattr__(self, "force", _vector(self.force, 3, f"points.{self.name}.force"))
+        self.joint  # the same checks
 
     @property
     def joint(self):
-        """The point's mass, volume, drag and added mass as a ``Joint`` of a line."""
-        return Joint(self.name, self.mass, self.volume, self.CdA, self.Ca)
+        """The point's mass, volume, drag, added mass and external force as a ``Joint`` of a line."""
+        return Joint(self.name, self.mass, self.volume, self.CdA, self.Ca, tuple(self.force))
 
 
 @dataclass(frozen=True)

@@ -13,12 +13,14 @@ import numpy as np
 @dataclass(frozen=True)
 class Environment:
     """Water and gravity: density [kg/m^3], gravity [m/s^2], uniform current [m/s] (3,), or a
-    current varying with depth (``cablefem.loads.current.CurrentProfile``, then ``current`` is zero)."""
+    current varying with depth (``cablefem.loads.current.CurrentProfile``, then ``current`` is zero),
+    and waves (a ``cablefem.waves.Sea``, None in still water), which add to the current."""
 
     water_density: float = 1025.0
     gravity: float = 9.81
     current: tuple = (0.0, 0.0, 0.0)
     current_profile: object = None
+    waves: object = None
 
 
 @dataclass(frozen=True)

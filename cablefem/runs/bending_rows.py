@@ -1,6 +1,6 @@
 """A run's bending outputs: the end moments of the lines with EI > 0 in tensions.csv (a row a step: a
 clamped end's reaction, ``Integrator.clamp_moments``, else EI kappa there) and each line's largest
-curvature, where and when, in summary.json (docs/outputs.md): ``results.curvature_peak`` or a clamped
+curvature, where and when, in summary.json (docs/outputs.md): ``curvature.curvature_peak`` or a clamped
 end's reaction over EI, whichever is larger.
 
 The compiled march returns forces only, so a run with a bending line steps one time step per call
@@ -9,7 +9,8 @@ and ``measure`` reads each line's state after every step (``cablefem.runs.run._a
 
 import numpy as np
 
-from cablefem.runs.results import LineSampler, curvature_peak
+from cablefem.runs.curvature import curvature_peak
+from cablefem.runs.results import LineSampler
 
 
 class BendingRows:

@@ -10,6 +10,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from cablefem.fem import clamp
+from cablefem.runs.curvature import clamped_ends, node_curvature
+from cablefem.loads import State
+from cablefem.loads.rope import Rope
 
 
 @dataclass
@@ -149,81 +152,6 @@ def point_tension(law, dr, dv=None):
     return np.einsum("cn,nc->n", flux, dr) / np.linalg.norm(dr, axis=1)
 
 
-def curvature_at(system, X, s):
-    """Curvature kappa = |r' x r''| / |r'|^3 [1/m] (n,) at arc lengths s (n,) [m], inside the element
-    holding each s (``cablefem.loads.bending``); zero on Lagrange elements (no C1 curvature)."""
-    from cablefem.loads.bending import curvature
-
-    s = np.atleast_1d(np.asarray(s, dtype=float))
-    if not system.fem.hermite:
-        return np.zeros(s.shape)
-    return curvature(system.fem.derivative(X, s).T, system.fem.second_derivative(X, s).T)
-
-
-def node_curvature(system, X):
-    """Curvature [1/m] and bending moment EI kappa [N m] at the vertices (n,), anchor first: r'' jumps
-    at an interior vertex, so the two elements' values there are averaged; zero on Lagrange
-    elements, and the moment zero where EI = 0 (a vertex between two types takes the mean of EI
-    kappa of its two sides). ``report`` puts a clamped end's reaction at its end (``clamped_ends``)."""
-    fem = system.fem
-    nodes = fem.mesh.p[0]
-    if not fem.hermite:
-        zero = np.zeros(len(nodes))
-        return zero, zero.copy()
-    inset = 1e-9 * np.diff(nodes)
-    sides = [nodes[:-1] + inset, nodes[1:] - inset]  # each element's left and right end
-    EI = system.props["EI"]
-    kappa = [curvature_at(system, X, s) for s in sides]
-    moment = [EI * k for k in kappa]
-    out = []
-    for left, right in (kappa, moment):
-        values = np.empty(len(nodes))
-        values[1:-1] = 0.5 * (right[:-1] + left[1:])
-        values[0], values[-1] = left[0], right[-1]
-        out.append(values)
-    return tuple(out)
-
-
-#: where r'' of a cubic Hermite element is most accurate: its two Gauss points (the Barlow points of
-#: the beam's moment), as fractions of the element
-BARLOW = (0.5 - 0.5 / 3.0**0.5, 0.5 + 0.5 / 3.0**0.5)
-
-
-def curvature_peak(system, X, within=None):
-    """The largest curvature [1/m] of a Hermite line at state X and the arc length [m] where it is:
-    kappa at each element's two Gauss points, the peak refined by the parabola through the largest and
-    its two neighbours (the lazy wave's peak within 0.1 % at 5 m elements, where the largest of 16
-    samples an element is 2.8 % high: validation/cables); ``within`` (lo, hi) [m]: only there. (0, None)
-    on Lagrange elements."""
-    fem = system.fem
-    if not fem.hermite:
-        return 0.0, None
-    nodes = fem.mesh.p[0]
-    s = np.sort(np.concatenate([nodes[:-1] + f * np.diff(nodes) for f in BARLOW]))
-    if within is not None:
-        s = s[(s >= within[0]) & (s <= within[1])]
-    kappa = curvature_at(system, X, s)
-    i = int(np.argmax(kappa))
-    if 0 < i < len(s) - 1:
-        x, y = s[i - 1:i + 2], kappa[i - 1:i + 2]
-        a, b, c = np.polyfit(x - x[1], y, 2)
-        if a < 0:
-            at = float(np.clip(-b / (2.0 * a), x[0] - x[1], x[2] - x[1]))
-            return float(a * at * at + b * at + c), float(x[1] + at)
-    return float(kappa[i]), float(s[i])
-
-
-def clamped_ends(system, curvature, moment, reactions):
-    """At a clamped end, the bending moment (n,) [N m] is the clamp's reaction (``reactions`` (2, 3):
-    ``cablefem.fem.clamp.reaction_moments``), far more accurate there than EI kappa read from r'', and
-    the curvature (n,) [1/m] that moment over EI (in place)."""
-    EI = system.props["EI"]
-    for end, (direction, node, element) in enumerate(zip(system.fem.clamped, (0, -1), (0, -1))):
-        if direction is not None:
-            moment[node] = float(np.linalg.norm(reactions[end]))
-            curvature[node] = moment[node] / EI[element] if EI[element] > 0 else curvature[node]
-
-
 def embedment(system, X, anchor_force):
     """The soil's JSON fields of a line (DESIGN.md): the force on the padeye (the anchor) and its
     magnitude, the tension [N] and the angle [deg] between the line and the local surface where the
@@ -299,7 +227,9 @@ class LineSampler:
         # r' of every point in one product: the points, then the vertices from the left, from the right
         self.stacked = (np.concatenate([self.gradients, left[1], right[1]]),
                         np.concatenate([self.dofs, left[3], right[3]]))
-        self.law = tension_law(system, np.concatenate([self.element, left[2], right[2]]))
+        elements = np.concatenate([self.element, left[2], right[2]])
+        self.law = tension_law(system, elements)
+        self.rope = RopeSampler(system, elements, np.concatenate([self.s, at - inset, at + inset]))
         self.seconds = fem.local_second_basis(self.s) if fem.hermite else None  # (n, nloc)
         self.EI = system.props["EI"][self.element]
 
@@ -326,8 +256,9 @@ class LineSampler:
         the two elements', and at the ends the line's tension there, ``ends`` = (fairlead, anchor):
         forces (3,) or their magnitudes (without, the law's there)."""
         dr = self._sides(X)
+        dv = None if V is None else self._sides(V)
         strain = self._points(np.linalg.norm(dr, axis=1) - 1.0)
-        tension = self._points(point_tension(self.law, dr, None if V is None else self._sides(V)))
+        tension = self._points(point_tension(self.law, dr, dv) + self.rope.tension(dr, dv))
         if ends is not None:
             tension[self.fairlead], tension[self.anchor] = (float(np.linalg.norm(end)) for end in ends)
         return strain, tension
@@ -347,6 +278,39 @@ class LineSampler:
         out = values[:n].copy()
         if m:
             out[self.vertices] = 0.5 * (values[n:n + m] + values[n + m:])
+        return out
+
+
+class RopeSampler:
+    """The tension [N] of a line's rope elements (``cablefem.loads.rope``) at sample points: a table's
+    law at the points' r' and v' (``Rope.tension``), a law with history the tension its nearest
+    reduced point committed (the history's ``tension``: a frame or the static JSON comes after a
+    commit); zero on the tension load's elements (and on a line without a rope)."""
+
+    def __init__(self, system, elements, s):
+        self.system = system
+        self.rope = system.load("rope") if system.has("rope") else None
+        if self.rope is None:
+            return
+        kind = self.rope.kind[elements]
+        self.table = np.flatnonzero(kind == 1)
+        self.history = np.flatnonzero(kind > 1)
+        rule = system.fem.reduced.s[elements[self.history]]  # (m, nr) arc lengths of their reduced points
+        self.at = (elements[self.history], np.argmin(np.abs(rule - s[self.history, None]), axis=1))
+        self.law = Rope([self.rope.laws[e] for e in elements[self.table]], self.rope.EA[elements[self.table], 0],
+                        self.rope.slack_damping[elements[self.table], 0]) if self.table.size else None
+
+    def tension(self, dr, dv=None):
+        """Tension [N] (n,) of the rope at points with dr/ds and dv/ds (n, 3)."""
+        out = np.zeros(len(dr))
+        if self.rope is None:
+            return out
+        if self.law is not None:
+            rows = self.table
+            state = State(None, dr[rows].T[:, :, None], dv=None if dv is None else dv[rows].T[:, :, None])
+            out[rows] = self.law.tension(state)[0][:, 0]
+        if self.history.size:
+            out[self.history] = self.system.history["reduced"][0]["rope"]["tension"][self.at]
         return out
 
 

@@ -21,7 +21,7 @@ import numpy as np
 from cablefem.dynamics.group import Group, junction_groups
 from cablefem.dynamics.integrator import Integrator
 from cablefem.dynamics.registry import INTEGRATORS, integrator_options
-from cablefem.errors import ConvergenceError, OutputError
+from cablefem.errors import ConvergenceError, InputError, OutputError
 from cablefem.io.checks import check_names, check_run
 from cablefem.io.output import (RowsFile, deferred_signals, failure as write_failure, inside, prepare_folder,
                                 remove_partials, tidy, write_atomic)
@@ -30,6 +30,7 @@ from cablefem.model.network import anchor_path, boundary_path
 from cablefem.runs.network_output import NetworkRows, body_reference, frame_marks
 from cablefem.runs.bending_rows import BendingRows
 from cablefem.runs.results import LineSampler, line_fields
+from cablefem.runs.surface import NAME as SURFACE, SurfaceFrames
 from cablefem.statics.scene import run_start
 
 
@@ -79,17 +80,25 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
 
     check_names(scene)
     check_run(scene, duration, dt)
+    sea = scene.environment.waves
+    if sea is not None and scene.name == SURFACE:
+        raise InputError(f"a scene in waves may not be named '{SURFACE}': its frames and the free surface's would "
+                         f"both be {SURFACE}.pvd", key="name", file=scene.where("name")[0])
     solver = scene.solver
     duration = float(solver.duration if duration is None else duration)
     dt = float(solver.dt if dt is None else dt)
     out_dir = prepare_folder(out_dir or scene.output.dir)
-    remove_partials(out_dir, (f"{scene.name}_", f"{scene.name}.pvd", *RUN_FILES))
+    remove_partials(out_dir, (f"{scene.name}_", f"{scene.name}.pvd", *RUN_FILES)
+                    + ((f"{SURFACE}_", f"{SURFACE}.pvd") if sea is not None else ()))
     remove_earlier_run(out_dir, scene.name)
+    if sea is not None:  # the free surface of an earlier run in waves
+        remove_earlier_run(out_dir, SURFACE, files=())
     start = time.perf_counter()
     summary = {"scene": scene.name, "seabed": scene.seabed.describe(),
-               "notes": list(scene.notes) + setting_warnings(scene, dt), "dt": dt, "duration": duration}
+               "notes": list(scene.notes) + setting_warnings(scene, dt), "dt": dt, "duration": duration,
+               **({"waves": sea.describe()} if sea is not None else {})}
     integrators, outputs, status = [], {}, "completed"
-    tracker = _Extremes([line.name for line in scene.lines], NetworkRows(scene) if scene.points else None,
+    tracker = _Extremes([line.name for line in scene.lines], NetworkRows(scene) if scene.points else None, sea,
                         BendingRows(scene.lines))
     try:
         seabed_vtu = inside(out_dir, "seabed.vtu")
@@ -106,7 +115,10 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
         groups = _groups(scene, integrators)
         outputs["frames"] = TimeSeriesWriter(out_dir, scene.name)
         tracker.bending.attach(integrators)
-        outputs["table"] = RowsFile(inside(out_dir, "tensions.csv"), _columns(scene, tracker.network, tracker.bending))
+        if sea is not None:
+            outputs["surface"] = SurfaceFrames(sea, _bounds(scene), out_dir)
+        outputs["table"] = RowsFile(inside(out_dir, "tensions.csv"),
+                                    _columns(scene, tracker.network, sea, tracker.bending))
         outputs["bar"] = _progress(progress, duration)
         _advance(scene, integrators, groups, outputs, tracker, duration, dt)
     except KeyboardInterrupt:
@@ -121,14 +133,14 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
     return summary
 
 
-def remove_earlier_run(out_dir, name):
+def remove_earlier_run(out_dir, name, files=RUN_FILES):
     """Remove what an earlier run of a scene called ``name`` wrote in ``out_dir`` (its frames and
-    .pvd, the pictures ``cablefem render`` made of them there, and the folder's seabed.vtu,
+    .pvd, the pictures ``cablefem render`` made of them there, and the folder's ``files``: seabed.vtu,
     tensions.csv and summary.json, which every run writes), so that the folder holds this run's
     outputs only; no other file is touched."""
     from cablefem.post import picture_files
 
-    for path in series_files(out_dir, name) + picture_files(out_dir, name) + [inside(out_dir, f) for f in RUN_FILES]:
+    for path in series_files(out_dir, name) + picture_files(out_dir, name) + [inside(out_dir, f) for f in files]:
         with contextlib.suppress(FileNotFoundError):
             os.unlink(path)
 
@@ -168,6 +180,7 @@ def _advance(scene, integrators, groups, outputs, tracker, duration, dt):
     between output intervals (``deferred_signals``; a compiled march does not see them sooner
     anyway), so that the rows and frames always hold every step taken."""
     solver, frames, table, bar = scene.solver, outputs["frames"], outputs["table"], outputs["bar"]
+    surface = outputs.get("surface")
     samplers = [LineSampler(integ.system) for integ in integrators]  # the frames' points, once
     marks, body_marks = frame_marks(scene)
     every = scene.output.every if solver.adaptive else max(scene.output.every, dt)
@@ -184,6 +197,8 @@ def _advance(scene, integrators, groups, outputs, tracker, duration, dt):
             frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V, sampler=sampler, ends=ends)
                                            for i, sampler, ends in zip(integrators, samplers, rows[-1][1])],
                                           marks, bodies))
+            if surface is not None:
+                surface.write(t)
             frame = int(np.floor((t + near) / every)) + 1
         return t
 
@@ -213,7 +228,7 @@ def _finish(summary, status, integrators, outputs, tracker, start, out_dir, rera
     (``reraise``), else that other failure is the one reported."""
     errors = []
     with deferred_signals(reraise=reraise):
-        for name in ("frames", "table"):
+        for name in ("frames", "surface", "table"):
             if name in outputs:
                 try:
                     outputs[name].close()
@@ -226,6 +241,7 @@ def _finish(summary, status, integrators, outputs, tracker, start, out_dir, rera
             "status": status, "completed": status == "completed",
             "simulated_time_s": integrators[0].t if integrators else 0.0,
             "frames": outputs["frames"].listed if "frames" in outputs else 0,
+            **({"surface_frames": outputs["surface"].listed} if "surface" in outputs else {}),
             "wall_time_s": time.perf_counter() - start,
             "steps": sum(s["steps"] for s in stats),
             "newton_iterations": sum(s["newton_iterations"] for s in stats),
@@ -260,19 +276,20 @@ def _march(integrators, groups, times, write):
     return [(tk, [forces[id(integ)][k] for integ in integrators]) for k, tk in enumerate(times)]
 
 
-def _row(t, forces, extra=()):
+def _row(t, forces, tensions, extra=()):
     """A tensions.csv row: t, then per line fairlead_tension, anchor_tension, fx, fy, fz, from each
-    line's (fairlead, anchor) forces, then the network's ``extra`` values."""
+    line's (fairlead, anchor) forces and their ``tensions`` (lines, 2), then the network's ``extra``
+    values."""
     values = [t]
-    for fairlead, anchor in forces:
-        values += [np.linalg.norm(fairlead), np.linalg.norm(anchor), *fairlead]
+    for (fairlead, _), (T_fairlead, T_anchor) in zip(forces, tensions):
+        values += [T_fairlead, T_anchor, *fairlead]
     return [f"{x + 0.0:.10g}" for x in [*values, *extra]]  # + 0.0: no "-0"
 
 
-def _columns(scene, network=None, bending=None):
+def _columns(scene, network=None, sea=None, bending=None):
     names = ["fairlead_tension", "anchor_tension", "fx", "fy", "fz"]
     extra = ([] if bending is None else bending.columns(len(scene.lines) > 1)) + \
-        ([] if network is None else network.columns())
+        ([] if network is None else network.columns()) + ([] if sea is None else ["eta"])
     if len(scene.lines) == 1:
         return ["t"] + names + extra
     return ["t"] + [f"{line.name}:{n}" for line in scene.lines for n in names] + extra
@@ -289,39 +306,42 @@ def _progress(progress, duration):
 
 class _Extremes:
     """Largest and smallest fairlead and anchor tensions per line, with their times, the
-    network's columns and extremes (``network``: a ``NetworkRows`` or None) and the bending lines'
-    end moments and curvature extremes (``bending``: a ``BendingRows``)."""
+    network's columns and extremes (``network``: a ``NetworkRows`` or None), in waves (``sea``) the
+    elevation at the origin, and the bending lines' end moments and curvature extremes (``bending``:
+    a ``BendingRows``)."""
 
-    def __init__(self, names, network=None, bending=None):
+    def __init__(self, names, network=None, sea=None, bending=None):
         self.names = names
         self.table = {n: {} for n in names}
         self.network = network
+        self.sea = sea
         self.bending = bending
 
     def rows(self, rows):
         """The tensions.csv rows of ``rows`` (t, forces per line), the extremes updated."""
-        for t, forces in rows:
-            self.update(t, forces)
+        times = np.array([t for t, _ in rows])
+        tensions = np.linalg.norm(np.array([forces for _, forces in rows], dtype=float).reshape(len(rows), -1, 2, 3),
+                                  axis=-1)  # (rows, lines, 2): each row's fairlead and anchor tension
+        self.update(times, tensions)
+        extra = [[] for _ in rows] if self.network is None else \
+            self.network.values(list(times), [forces for _, forces in rows])
         if self.bending:  # a row a step: the moments at the state each step reached (``_advance``)
-            moments = [self.bending.values() for _ in rows]
-            if self.network is None:
-                return [_row(t, forces, values) for (t, forces), values in zip(rows, moments)]
-            extra = self.network.values([t for t, _ in rows], [forces for _, forces in rows])
-            return [_row(t, forces, [*m, *values]) for (t, forces), m, values in zip(rows, moments, extra)]
-        if self.network is None:
-            return [_row(t, forces) for t, forces in rows]
-        extra = self.network.values([t for t, _ in rows], [forces for _, forces in rows])
-        return [_row(t, forces, values) for (t, forces), values in zip(rows, extra)]
+            extra = [[*self.bending.values(), *values] for values in extra]
+        if self.sea is not None:
+            extra = [list(values) + [eta] for values, eta in zip(extra, self.sea.elevation(0.0, 0.0, times))]
+        return [_row(t, forces, T, values) for (t, forces), T, values in zip(rows, tensions, extra)]
 
-    def update(self, t, forces):
-        for name, (fairlead, anchor) in zip(self.names, forces):
-            for key, value in (("fairlead_tension", np.linalg.norm(fairlead)),
-                               ("anchor_tension", np.linalg.norm(anchor))):
-                entry = self.table[name]
-                if f"{key}_max" not in entry or value > entry[f"{key}_max"]:
-                    entry[f"{key}_max"], entry[f"{key}_max_t"] = float(value), float(t)
-                if f"{key}_min" not in entry or value < entry[f"{key}_min"]:
-                    entry[f"{key}_min"], entry[f"{key}_min_t"] = float(value), float(t)
+    def update(self, times, tensions):
+        """The extremes after rows at ``times`` (m,) with ``tensions`` (m, lines, 2); the first time of
+        an extreme is kept."""
+        for name, line in zip(self.names, np.moveaxis(tensions, 1, 0)):
+            entry = self.table[name]
+            for key, values in (("fairlead_tension", line[:, 0]), ("anchor_tension", line[:, 1])):
+                high, low = int(np.argmax(values)), int(np.argmin(values))
+                if f"{key}_max" not in entry or values[high] > entry[f"{key}_max"]:
+                    entry[f"{key}_max"], entry[f"{key}_max_t"] = float(values[high]), float(times[high])
+                if f"{key}_min" not in entry or values[low] < entry[f"{key}_min"]:
+                    entry[f"{key}_min"], entry[f"{key}_min_t"] = float(values[low]), float(times[low])
 
     def as_dict(self):
         return self.table

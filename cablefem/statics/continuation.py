@@ -76,6 +76,8 @@ def axial_continuation(system, X, tolerance, max_iterations):
     starts from the last one's answer. Same returns as ``newton``."""
     tension = system.tension
     target = tension.EA.copy()
+    if not np.any(target > 0.0):  # a rope of a law of its own (cablefem.loads.rope) throughout: no EA to scale
+        return X, 0, np.inf, [], False
     level = np.log10(100.0 * float(np.linalg.norm(system.weight_vector())) / float(np.max(target)))
     if level >= -1.0:  # not stiff against its loads: nothing to gain over Newton and its fallbacks
         return X, 0, np.inf, [], False

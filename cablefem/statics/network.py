@@ -7,8 +7,8 @@ C's R = Rx Ry Rz) of each free body. This module finds them in statics by Newton
 the strings condensed onto their ends:
 
 - inner: each string that ends at a coupling node is solved for its own equilibrium with those
-  ends held where q puts them (``cablefem.statics.newton``, warm started from the last solution shifted
-  with its ends);
+  ends held where q puts them (``cablefem.statics.newton``), from its last solution moved with its
+  ends by its tangent's response (``Network.predict``), else from its start shape;
 - outer: the residual is the balance at each node: the force of the string ends on a junction
   point plus its own weight and buoyancy; and on a free body, the force and the moment about its
   reference point of its points' string ends, its weight at the centre of gravity, its buoyancy
@@ -32,8 +32,14 @@ from cablefem.errors import ConvergenceError
 from cablefem.loads.points import PointLoads
 from cablefem.model.network import coupling, rotation, rotation_rates
 from cablefem.statics.continuation import axial_continuation
+from cablefem.statics.hang import free_end
+from cablefem.statics.network_relax import NetworkPseudoTransient
 from cablefem.statics.newton import Halving, iterate, newton
 from cablefem.statics.solve import solve_static
+
+#: a string's Newton from its last equilibrium (``Network.solve_strings``) may take this many times
+#: the solver's ``max_iterations``
+WARM_ITERATIONS = 4
 
 
 def _cross(a):
@@ -73,6 +79,13 @@ class NetworkStatics:
     residual: float
     history: list = field(default_factory=list)
     wall_time_s: float = 0.0
+    solves: list = field(default_factory=list)  # per string: {how its solves converged: how many}
+    string_iterations: list = field(default_factory=list)  # per string: its Newton iterations, summed
+    outer: str = "halving"  # how the coupling unknowns' Newton converged
+
+    def strategy(self, k):
+        """How string k was solved, e.g. 'network (predicted x11, axial continuation x1)'."""
+        return "network (" + ", ".join(f"{name} x{n}" for name, n in self.solves[k].items()) + ")"
 
 
 class Network:
@@ -104,6 +117,8 @@ class Network:
                 given or any(kk == k and ee == e for kk, ee, _ in self.ends) for e, given in enumerate(lines[k].prescribed)))
         self.lines = lines
         self.systems = [build(line) for line in lines]
+        self.solves = [{} for _ in lines]  # per string: {how a solve converged: how many}
+        self.string_iterations = [0] * len(lines)
 
     def _node(self, name):
         """The coupling node at point ``name`` (made on first use), or None (not a coupling node)."""
@@ -117,7 +132,7 @@ class Network:
             return None
         env = self.scene.environment
         loads = None
-        if point.mass > 0.0 or point.volume > 0.0:
+        if point.mass > 0.0 or point.volume > 0.0 or np.any(point.force):
             loads = PointLoads([0], [point.joint], env.water_density, env.gravity)
         node = _Node(name, self.offsets[owner], None if point.body is None else point.position, loads)
         self.nodes[name] = node
@@ -152,40 +167,78 @@ class Network:
     # ---------------------------------------------------------------------- strings
     def solve_strings(self, places, states, tolerance, max_iterations):
         """Each coupled string's equilibrium with its coupling ends at ``places``; the states
-        (updated in place, shifted with their ends before Newton) and the Newton iterations."""
+        (updated in place, each predicted from its last equilibrium by its tangent before Newton)
+        and the Newton iterations."""
         iterations = 0
         for k in self.coupled:
             system = self.systems[k]
-            fem = system.fem
-            X = states[k]
             targets = {e: places[name][0] for kk, e, name in self.ends if kk == k}
-            if X is None:
+            X1, its, ok, how = None, 0, False, "predicted"
+            if states[k] is not None:
+                # from its last equilibrium, moved with its ends, a string converges, if slowly: one far
+                # stiffer than its loads, an element taut by micrometres (tripod.txt's float), by a
+                # fifth of its residual an iteration
+                X1, its, _, _, ok = newton(system, self.predict(k, states[k], targets), tolerance,
+                                           WARM_ITERATIONS * max_iterations)
+            if not ok:  # from its start shape
                 X = _start(system, targets)
-            else:
-                moves = [targets.get(e, X[dof]) - X[dof] for e, dof in enumerate(fem.end_dofs)]
-                X = X + _shift(fem, self.lines[k].unstretched_length, moves)
-            X1, its, norm, _, ok = newton(system, X, tolerance, max_iterations)
-            if not ok:  # a string far stiffer than its loads (tripod.txt's float) from where it was
-                X1, more, norm, _, ok = axial_continuation(system, X, tolerance, max_iterations)
-                its += more
+                X1, more, _, _, ok = newton(system, X, tolerance, max_iterations)
+                its, how = its + more, "newton"
+            if not ok:  # a string far stiffer than its loads (tripod.txt's float)
+                X1, more, _, _, ok = axial_continuation(system, X, tolerance, max_iterations)
+                its, how = its + more, "axial continuation"
             if not ok:
                 result = solve_static(system, X, tolerance, max_iterations)
-                X1, its = result.X, result.iterations
+                X1, its, how = result.X, its + result.iterations, result.strategy
             system.commit_history()
             states[k], iterations = X1, iterations + its
+            self.solves[k][how] = self.solves[k].get(how, 0) + 1
+            self.string_iterations[k] += its
         return iterations
 
-    def condensed(self, k, X):
-        """End forces {end: F (3,)} of string k on its coupling nodes and their stiffness
-        {(end, end'): dF_end / dx_end' (3, 3)} (the Schur complement of the string's tangent)."""
+    def predict(self, k, X, targets):
+        """String k's state with its coupling ends moved from where X (N, 3), an equilibrium, has
+        them to ``targets`` {end: position (3,)}. A string held at both ends: the interior moved by
+        the tangent's response to the ends' move, dX_I = -K_II^-1 K_IE dx_E (the Euler predictor of
+        continuation in the ends' positions: a taut leg turns about its anchor). A string with a free
+        end hangs from its coupling end and moves with it (its turn about the vertical through that
+        end is free, without current: a null direction of K_II, along which the tangent's response
+        is round-off amplified; on tripod.txt's float string this takes fewer iterations than the
+        tangent's response or a shift falling from the end's move to none at the free end)."""
+        if free_end(self.lines[k]) is not None:
+            (e, target), = targets.items()
+            fem = self.systems[k].fem
+            move = target - X[fem.end_dofs[e]]
+            if fem.hermite:  # the vertices move, the tangent rows stay
+                out = X.copy()
+                out[: fem.n_vertices] += move
+                return out
+            return X + move
+        _, K, dofs, E, interior = self._tangent(k, X)
+        moves = np.concatenate([targets[e] - X[dofs[e]] for e in dofs])
+        out = X.copy()
+        for e, dof in dofs.items():
+            out[dof] = targets[e]
+        rows = out.reshape(-1)
+        rows[interior] -= spla.splu(K[interior][:, interior].tocsc()).solve(K[interior][:, E] @ moves)
+        return out
+
+    def _tangent(self, k, X):
+        """String k at X (N, 3): its residual rows (N, 3), full tangent (sparse), its coupling ends'
+        vertices {end: dof}, their vector rows E and the free vector rows."""
         system = self.systems[k]
         fem = system.fem
         residual, blocks = system.evaluate(system.state(X))
         K = system.matrix(blocks, free_only=False).tocsc()
-        ends = [e for kk, e, _ in self.ends if kk == k]
-        dofs = {e: fem.end_dofs[e] for e in ends}
-        E = np.concatenate([3 * dofs[e] + np.arange(3) for e in ends])
-        interior = fem.free_vector_dofs
+        dofs = {e: fem.end_dofs[e] for kk, e, _ in self.ends if kk == k}
+        E = np.concatenate([3 * dofs[e] + np.arange(3) for e in dofs])
+        return residual, K, dofs, E, fem.free_vector_dofs
+
+    def condensed(self, k, X):
+        """End forces {end: F (3,)} of string k on its coupling nodes and their stiffness
+        {(end, end'): dF_end / dx_end' (3, 3)} (the Schur complement of the string's tangent)."""
+        residual, K, dofs, E, interior = self._tangent(k, X)
+        ends = list(dofs)
         K_ii = K[interior][:, interior].tocsc()
         K_ie = K[interior][:, E].toarray()
         K_ei = K[E][:, interior]
@@ -253,20 +306,6 @@ class Network:
         return min(self.lines[k].unstretched_length for k in self.coupled)
 
 
-def _shift(fem, length, moves):
-    """Rows (N, 3) of the displacement that moves a line's ends by ``moves`` (anchor, fairlead) and
-    its points in proportion to their arc length: on Hermite elements the vertex tangents turn by
-    its slope (moves[1] - moves[0]) / L."""
-    if fem.hermite:
-        s = fem.mesh.p[0] / length
-        rows = np.empty((fem.n_dofs, 3))
-        rows[: fem.n_vertices] = (1.0 - s)[:, None] * moves[0] + s[:, None] * moves[1]
-        rows[fem.n_vertices:] = (moves[1] - moves[0]) / length
-        return rows
-    s = fem.scalar_basis.doflocs[0] / length
-    return (1.0 - s)[:, None] * moves[0] + s[:, None] * moves[1]
-
-
 def _start(system, targets):
     """A first state of a string with its coupling ends at ``targets`` {end: position}: its start
     shape (the line's ends are where [points] and [bodies] put the coupling nodes at q0)."""
@@ -292,6 +331,18 @@ def solve_network(scene, build, tolerance=1e-8, max_iterations=50):
     balance = _Balance(net, tolerance, max_iterations)
     (q, states, places), _, norm, history, converged = iterate(balance, (q, states, places), tolerance,
                                                                max_iterations, Halving())
+    outer = "halving"
+    if not converged:  # no equilibrium within Newton's reach: follow a damped pseudo-motion to one
+        q0, states0 = net.start(), [None] * len(scene.lines)
+        places0 = net.place(q0)
+        iterations += net.solve_strings(places0, states0, tolerance, max_iterations)
+        relaxed = iterate(balance, (q0, states0, places0), tolerance, 10 * max_iterations,
+                          NetworkPseudoTransient(net))
+        if relaxed[4]:
+            (q, states, places), _, norm, more, converged = relaxed
+            history, outer = history + more, "halving, then pseudo-transient"
+        else:
+            norm = min(norm, relaxed[2])
     iterations += balance.iterations
     if not converged:
         raise ConvergenceError(
@@ -303,7 +354,7 @@ def solve_network(scene, build, tolerance=1e-8, max_iterations=50):
     points = {name: places[name][0] for name in net.junctions}
     poses = {name: q[net.offsets[name]:net.offsets[name] + 6].copy() for name in net.bodies}
     return NetworkStatics(net.systems, states, points, poses, iterations, norm, history,
-                          time.perf_counter() - start)
+                          time.perf_counter() - start, net.solves, net.string_iterations, outer)
 
 
 class _Balance:
@@ -347,40 +398,3 @@ def _norm(r, net, scale, length):
         o = net.offsets[name]
         out = max(out, np.linalg.norm(r[o:o + 3]), np.linalg.norm(r[o + 3:o + 6]) / length)
     return out / scale
-
-
-def network_loads(scene, ends, poses=None):
-    """What the strings do to the network's named points and bodies. ``ends``: per string, its
-    ((anchor force, anchor position), (fairlead force, fairlead position)), the forces the string
-    exerts there. Returns {point: force (3,)} (the string ends there, summed) and {body: (force
-    (3,), moment (3,) about its reference point)} at ``poses`` {name: (6,)} (default: where
-    [bodies] puts them)."""
-    points = {}
-    for line, pair in zip(scene.lines, ends):
-        for name, (force, at) in zip(line.ends, pair):
-            if name is not None:
-                total, _ = points.get(name, (np.zeros(3), None))
-                points[name] = (total + force, np.asarray(at, dtype=float))
-    bodies = {}
-    for name, body in scene.bodies.items():
-        pose = (poses or {}).get(name, np.concatenate([body.position, body.rotation]))
-        force, moment = np.zeros(3), np.zeros(3)
-        for point, (F, at) in points.items():
-            if scene.points[point].body == name:
-                force += F
-                moment += np.cross(at - pose[:3], F)
-        bodies[name] = (force, moment)
-    return {name: F for name, (F, _) in points.items()}, bodies
-
-
-def point_positions(scene, lines_nodes):
-    """Where each named point of ``scene`` is: at a string end, or at the vertex of its joint inside
-    a string; ``lines_nodes``: per string, its vertex positions (n, 3), anchor first."""
-    out = {}
-    for line, nodes in zip(scene.lines, lines_nodes):
-        for name, row in zip(line.ends, (0, -1)):
-            if name is not None:
-                out[name] = np.asarray(nodes[row], dtype=float)
-        for vertex, (_, joint) in zip(line.joint_vertices(), line.joints):
-            out.setdefault(joint.name, np.asarray(nodes[vertex], dtype=float))
-    return out

@@ -19,7 +19,7 @@ scene's) and the order a solve tries them in (``cablefem.statics.solve``) are bu
 Newton starts from a shape close to the answer (``cablefem.statics.start_shape``: the elastic
 catenary that touches the seabed, never the straight chord, which converges to the inverse catenary
 of Fig. 5; the slack layout of a line longer than it needs; the inverted catenary of a buoyant
-line). It stops when the residual relative to the line's weight falls below the tolerance, or when
+line; the hang of a line with one free end). It stops when the residual relative to the line's weight falls below the tolerance, or when
 a full Newton step no longer reduces it and the step itself, the scale-free residual K^-1 G
 relative to the line's length, is below the tolerance (round-off: a position known to eps |X|
 leaves forces of eps |X| EA / h, which at large EA or seabed stiffness are far above any force
@@ -186,7 +186,8 @@ class PseudoTransient:
         fem = system.fem
         self.system = system
         self.mass = fem.vector_mass(system.props["mass"])
-        self.tau = 0.1 * float(np.min(np.diff(fem.mesh.p[0]))) / system.environment.gravity
+        # a scene without gravity (g = 0) takes the free fall of the standard g
+        self.tau = 0.1 * float(np.min(np.diff(fem.mesh.p[0]))) / (system.environment.gravity or 9.80665)
 
     def direction(self, problem, tangent, residual):
         blocks, _ = tangent
@@ -235,15 +236,15 @@ class Halving:
 
 class LineProblem:
     """One line's static residual on its free rows, as ``iterate`` solves it: positions X (N, 3), the
-    residual relative to ``scale`` (default the weight of the line's free rows), steps small below
-    ``tolerance`` of the line's length; evaluated by the system's evaluator (``_Linearisation``), or
-    by the loads' numpy faces (``numpy``)."""
+    residual relative to ``scale`` (default ``force_scale``), steps small below ``tolerance`` of the
+    line's length; evaluated by the system's evaluator (``_Linearisation``), or by the loads' numpy
+    faces (``numpy``)."""
 
     def __init__(self, system, tolerance, scale=None, numpy=False):
         fem = system.fem
         self.system, self.free, self.tolerance = system, fem.free_dofs, tolerance
         self.length = system.line.unstretched_length
-        self.scale = scale or float(np.linalg.norm(system.weight_vector()[self.free])) or 1.0
+        self.scale = scale or force_scale(system)
         self.linear = _Linearisation(system, numpy)
 
     def evaluate(self, X):
@@ -266,6 +267,19 @@ class LineProblem:
 
     def energy(self, X):
         return self.system.energy(X)
+
+
+def force_scale(system):
+    """The force [N] a line's static residual is relative to: the weight of its free rows, or its
+    points' weight less their buoyancy on its free rows where that is larger (a line as dense as the
+    water weighs nothing: the mass on its free end is what it carries)."""
+    free = system.fem.free_dofs
+    scale = float(np.linalg.norm(system.weight_vector()[free]))
+    points = point_loads(system)
+    if points is not None:
+        held = np.isin(points.vertices, free)
+        scale = max(scale, float(np.linalg.norm((points.dry - points.buoyancy)[held])))
+    return scale or 1.0
 
 
 def newton(system, X, tolerance=1e-8, max_iterations=50, scale=None):
@@ -338,17 +352,25 @@ def tension_only(system, X, tolerance, max_iterations, push=True):
     """
     if not push:
         return newton(system, X, tolerance, max_iterations)
-    tension = system.tension
-    tension.compression = True
+    axial = axial_loads(system)
+    for load in axial:
+        load.compression = True
     try:
         X1, its, norm, history, ok = newton(system, X, tolerance, max_iterations)
     finally:
-        tension.compression = False
+        for load in axial:
+            load.compression = False
     if ok and np.all(system.tension_strain(X1) > 0.0):
         return X1, its, norm, history, ok
     start = X1 if ok else X
     X2, its2, norm2, history2, ok2 = newton(system, start, tolerance, max_iterations)
     return X2, its + its2, norm2, history + history2, ok2
+
+
+def axial_loads(system):
+    """The line's axial loads: its tension and, where a line type has a law of its own, its rope
+    (``cablefem.loads.rope``)."""
+    return [system.tension] + ([system.load("rope")] if system.has("rope") else [])
 
 
 def point_loads(system):

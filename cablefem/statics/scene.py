@@ -93,8 +93,8 @@ def static_lines(scene, t0=None, systems=None):
     for k, line in enumerate(scene.lines):
         if k in coupled:
             system, X = network.systems[k], network.states[k]
-            result = StaticResult(X, 0, network.residual, strategy="network",
-                                  increment=scale_free_residual(system, X))
+            result = StaticResult(X, network.string_iterations[k], network.residual, strategy=network.strategy(k),
+                                  increment=scale_free_residual(system, X))  # its iterations are the network's
         else:
             if t0 is not None:
                 anchor = anchor_path(scene, line)

@@ -18,7 +18,7 @@ from cablefem.statics.continuation import (axial_continuation, point_continuatio
     stiffness_continuation)
 from cablefem.statics.newton import (StaticResult, newton, point_loads, pseudo_transient,
     scale_free_residual, tension_only)
-from cablefem.statics.start_shape import initial_shape
+from cablefem.statics.start_shape import hangs, initial_shape
 
 #: ``settle``: the time step [s] of the damped motion and the simulated time [s] between attempts of
 #: Newton to finish from where the line has got to (at most ``max_iterations`` of them: a lazy wave
@@ -33,18 +33,25 @@ def solve_static(system, X0=None, tolerance=1e-8, max_iterations=50):
     continuation on the axial stiffness (a line far stiffer than its loads), then the line let go
     in water until it settles (``settle``: a buoyant section rising off the seabed into its arch,
     which Newton cannot reach from a start with the section lying slack), then continuation on
-    the seabed stiffness (``cablefem.statics.continuation``), each from the start."""
+    the seabed stiffness (``cablefem.statics.continuation``), each from the start. From the hang of a
+    line with one free end (``cablefem.statics.hang``) the points' loads are there from the first
+    Newton and axial continuation comes before pseudo-transient."""
     start = time.perf_counter()
     X, slack = initial_shape(system) if X0 is None else (X0, False)
     system.reset_history(X)  # a load's history starts at the start shape (``initial_history``)
-    first = tension_only if point_loads(system) is None else point_continuation
-    strategies = [("newton", lambda: first(system, X, tolerance, max_iterations, push=not slack)),
+    hanging = X0 is None and hangs(system)
+    # the points' loads by continuation from none, unless the start already carries them (a hang)
+    first = tension_only if point_loads(system) is None or hanging else point_continuation
+    strategies = [("newton", lambda: first(system, X, tolerance, max_iterations, push=not (slack or hanging))),
                   ("pseudo-transient", lambda: pseudo_transient(system, X, tolerance, 10 * max_iterations)),
                   ("axial continuation", lambda: axial_continuation(system, X, tolerance, max_iterations)),
                   ("settling", lambda: settle(system, X, tolerance, max_iterations)),
                   ("continuation", lambda: stiffness_continuation(system, X, tolerance, max_iterations))]
-    if system.has("bending"):  # a line stiff axially against its bending: soft EA first (a lazy wave from the
-        strategies.insert(1, strategies.pop(2))  # catenary start: 182 iterations, where pseudo-transient spent 500)
+    # the hang has the shape; what Newton misses is a stiff line's swing to where its end rests. A line
+    # stiff axially against its bending: soft EA first too (a lazy wave from the catenary start: 182
+    # iterations, where pseudo-transient spent 500)
+    if hanging or system.has("bending"):
+        strategies.insert(1, strategies.pop(2))
     total, history, best = 0, [], np.inf
     for name, strategy in strategies:
         X1, its, norm, hist, ok = strategy()

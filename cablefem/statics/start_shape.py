@@ -18,6 +18,9 @@ to the inverse catenary (desire2023 Fig. 5). Three shapes, by what the line is:
   no force). Newton then only settles the ends: the lying part is already in equilibrium.
 - **A buoyant line** (mean submerged weight < 0): the inverted catenary, hanging upwards, which is
   the catenary of the weight's magnitude mirrored in z.
+- **A line with one free end** that hangs from its held end (``cablefem.statics.hang``): straight
+  down, each piece stretched by what hangs below it, onto the seabed where it reaches it; the free
+  end where the hang puts it, not where the scene gives it.
 
 ``initial_shape`` also says whether it laid out slack line: statics then skips the compressive
 start (``cablefem.statics.newton``), which would push slack elements straight.
@@ -30,6 +33,7 @@ import numpy as np
 from cablefem.fem import clamp
 from cablefem.statics.catenary import elastic_catenary, inclined_catenary
 from cablefem.geometry import Plane
+from cablefem.statics.hang import free_hang
 from cablefem.model.line import Line
 from cablefem.loads.gravity import submerged_fraction
 
@@ -53,25 +57,42 @@ def mean_weight(line, environment):
 
 def initial_shape(system):
     """Starting state X (N, 3) of a static solve of ``system`` and whether it lays slack line."""
-    line, seabed, fem = system.line, system.seabed, system.fem
-    environment = system.environment
-    weight, EA = mean_weight(line, environment)
-    dry = float(np.max(system.weight.dry))
-    positions, slack = None, False
-    if weight > NEUTRAL * dry:
-        positions = slack_layout(line, seabed, weight, EA, resting_sink(system, weight))
-        slack = positions is not None
-        if positions is None:
-            positions = _catenary(line, seabed, weight, EA)
-    elif weight < -NEUTRAL * dry:
-        positions, slack = _floating(line, system.weight, -weight, EA)
-    else:
-        positions = _chord(line)
+    line, fem = system.line, system.fem
+    weight, EA = mean_weight(line, system.environment)
+    hang = _hang(system)
+    positions, slack = (hang, False) if hang is not None else _shape(system, weight, EA)
     X = fem.interpolate(positions)
     _rest_on_seabed(system, X, max(weight, 0.0))
-    X[fem.anchor_dof], X[fem.fairlead_dof] = line.anchor, line.fairlead
+    for dof, end, held in zip(fem.end_dofs, (line.anchor, line.fairlead), line.prescribed):
+        if held or hang is None:  # a free end that hangs stays where the hang puts it
+            X[dof] = end
     clamp.satisfy(system.clamps, X)
     return X, slack
+
+
+def hangs(system):
+    """Whether the start of ``system`` is the hang of a line with one free end (``free_hang``)."""
+    return _hang(system) is not None
+
+
+def _hang(system):
+    """The hang (or rise) of a line with one free end (``free_hang``), or None."""
+    return free_hang(system.line, system.seabed, system.environment, float_level(system.weight))
+
+
+def _shape(system, weight, EA):
+    """The start's positions (a function of arc length) and whether they lay slack line, for a line
+    that does not hang from one end."""
+    line, seabed = system.line, system.seabed
+    dry = float(np.max(system.weight.dry))
+    if weight > NEUTRAL * dry:
+        positions = slack_layout(line, seabed, weight, EA, resting_sink(system, weight))
+        if positions is not None:
+            return positions, True
+        return _catenary(line, seabed, weight, EA), False
+    if weight < -NEUTRAL * dry:
+        return _floating(line, system.weight, -weight, EA)
+    return _chord(line), False
 
 
 def _frame(line):

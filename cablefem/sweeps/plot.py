@@ -17,12 +17,14 @@ KEY_UNITS = {
     ("line_types.NAME", "diameter"): "m", ("line_types.NAME", "mass"): "kg/m", ("line_types.NAME", "EA"): "N",
     ("line_types.NAME", "damping"): "s", ("line_types.NAME", "nominal_diameter"): "m",
     ("line_types.NAME", "EI"): "N m²",
+    ("line_types.NAME", "BA"): "N s", ("line_types.NAME", "EA_dynamic"): "N", ("line_types.NAME", "BA_dynamic"): "N s",
+    ("lines", "segments.syrope"): "N",
     ("lines", "anchor"): "m", ("lines", "fairlead"): "m", ("lines", "segments.length"): "m",
     ("seabed", "depth"): "m", ("seabed", "point"): "m", ("seabed", "slope_deg"): "deg",
     ("seabed", "azimuth_deg"): "deg", ("seabed", "stiffness"): "N/m^3", ("seabed", "damping"): "N s/m^3",
     ("friction", "v_threshold"): "m/s", ("friction", "saturation_damping"): "N s/m",
     ("points.NAME", "position"): "m", ("points.NAME", "mass"): "kg", ("points.NAME", "volume"): "m^3",
-    ("points.NAME", "CdA"): "m^2",
+    ("points.NAME", "CdA"): "m^2", ("points.NAME", "force"): "N",
     ("bodies.NAME", "position"): "m", ("bodies.NAME", "rotation_deg"): "deg",
     ("bodies.NAME", "waterplane_area"): "m^2", ("bodies.NAME", "motion.period"): "s",
     ("bodies.NAME", "motion.ramp"): "s",
@@ -32,6 +34,9 @@ KEY_UNITS = {
     ("motion", "ramp"): "s",
     ("solver", "dt"): "s", ("solver", "duration"): "s",
     ("output", "every"): "s",
+    ("waves", "amplitude"): "m", ("waves", "period"): "s", ("waves", "direction"): "deg", ("waves", "phase"): "deg",
+    ("waves", "Hs"): "m", ("waves", "Tp"): "s", ("waves", "frequency_band"): "rad/s", ("waves", "time_step"): "s",
+    ("waves", "ramp"): "s", ("waves", "depth"): "m",
 }
 
 #: the sections whose tables are named (``[line_types.NAME]``, ...): a key path's second part is the name

@@ -1,7 +1,7 @@
 """cablefem on the lazy wave: its static solve and its run under the hang-off's motion, with the same
 outputs as ``moordyn_side``: the force (3,) the cable exerts on the hang-off, the clamp's moment (3,)
 and the curvature peak farther than ``moordyn_side.CLEAR`` from the hang-off
-(``cablefem.runs.results.curvature_peak``; MoorDyn reads its node curvatures there)."""
+(``cablefem.runs.curvature.curvature_peak``; MoorDyn reads its node curvatures there)."""
 
 import time
 
@@ -9,7 +9,7 @@ import numpy as np
 
 from cablefem.fem import clamp
 from cablefem.fem.system import build_system
-from cablefem.runs.results import curvature_peak
+from cablefem.runs.curvature import curvature_peak
 from cablefem.statics.solve import solve_static
 from validation.cables import case
 from validation.cables.moordyn_side import CLEAR

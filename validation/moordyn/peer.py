@@ -187,7 +187,7 @@ def _token(value):
 
 
 def run_moordyn(path, motion, duration, dt_out, dtM=None, segments=None, options=None,
-                coupling="secant", ic_dtM=None, line_nodes=False, initial_state=None, probe=None):
+                coupling="secant", ic_dtM=None, line_nodes=False, initial_state=None, probe=None, files=None):
     """Run MoorDyn on ``path`` for ``duration`` [s], coupling every ``dt_out`` [s], the coupled
     points following ``motion(t) -> (positions (k, 3), velocities (k, 3))``; returns a dict with
     t (n,), forces (n, k, 3) [N], tensions (n, k) [N], positions (n, k, 3) [m] of the points as
@@ -203,7 +203,10 @@ def run_moordyn(path, motion, duration, dt_out, dtM=None, segments=None, options
     ``initial_state``: bytes of ``moordyn.Serialize`` taken right after the initial-condition solve
     of a run of the same lines and segments (its ``result["initial_state"]``): the run skips its
     own solve (``Init_NoIC``) and starts from that state, e.g. a frictionless equilibrium for a run
-    with friction, whose relaxation would stop wherever friction arrests it."""
+    with friction, whose relaxation would stop wherever friction arrests it.
+
+    ``files``: {name: text} of data files MoorDyn-C reads from the input file's folder (a WaveKin's
+    wave_frequencies.txt, ...), written beside the working copy."""
     import moordyn
 
     if coupling not in ("secant", "tangent"):
@@ -226,6 +229,8 @@ def run_moordyn(path, motion, duration, dt_out, dtM=None, segments=None, options
     with tempfile.TemporaryDirectory(prefix="moordyn-") as folder:
         work = Path(folder) / path.name
         work.write_text(text)
+        for name, content in (files or {}).items():
+            (Path(folder) / name).write_text(content)
         x, v = (np.asarray(a, dtype=float).reshape(k, 3) for a in motion(0.0))
         with silenced_stdout():
             start = time.perf_counter()

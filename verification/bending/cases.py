@@ -104,7 +104,7 @@ def end_moment(thetas, counts, step=math.pi / 4):
                 X, its, converged = models.solve(system, models.straight(system) if X is None else X,
                                                  c["EI"] * angle / c["L"] ** 2)
                 total, ok = total + its, ok and converged
-            from cablefem.runs.results import node_curvature
+            from cablefem.runs.curvature import node_curvature
 
             strain = exact.arc_strain(theta, c["L"], c["EI"], c["EA_arc"])
             reference = exact.arc(np.array([c["L"]]), theta, c["L"], strain)[0]

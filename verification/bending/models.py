@@ -66,7 +66,7 @@ def tip(system, X):
 
 def clamp_curvature(system, X):
     """The curvature [1/m] at the anchor (the clamp), from the first element's r''."""
-    from cablefem.runs.results import curvature_at
+    from cablefem.runs.curvature import curvature_at
 
     return float(curvature_at(system, X, np.array([0.0]))[0])
 

@@ -1,0 +1,338 @@
+"""The systems users run, both codes side by side in one process (issue 33): time per simulated
+second and the error of the fairlead tensions against fine references.
+
+Systems (``SYSTEMS``):
+
+- ``oc4-semi``: the OC4-DeepCwind semisubmersible's three chains (``examples/oc4_semi.dat``, 20
+  segments each, dtM 1 ms) with the platform surging 5 m at a 10 s period for 100 s
+  (``examples/oc4_semi.toml``).
+- ``flume-snap``: the flume chain of desire2023 (635 m, 100 m of water, frictionless) as the
+  MoorDyn file ``benchmarks/flume_snap_20.dat`` (20 segments, dtM 5 ms, no initial-condition
+  solve) under verification/work_precision's snap motion, 5 m at 6 s, for 36 s
+  (``benchmarks/flume_snap_defaults.toml``).
+
+Not yet here: the semi-taut chain-polyester-chain network of validation/networks (its clumps,
+buoys and six-degree-of-freedom platform need the peer's network runner) and a lazy-wave cable
+(issue 34).
+
+Rows, each run as a user runs it, in this process:
+
+- ``MoorDyn-C, the file``: PyPI ``moordyn`` on the file as it is (its segments, dtM and
+  initial-condition solve), the coupled points following the scene's motion, coupled every 0.01 s
+  (``validation.moordyn.runners.run_moordyn_case``).
+- ``cablefem, defaults``: ``cablefem.runs.run.run_scene`` on the scene as it is (what ``cablefem
+  run examples/oc4_semi.toml`` does, its outputs written to a temporary folder).
+- ``cablefem, best``: the same with the element order, element count, step and Newton tolerance
+  of ``SYSTEMS[...]["best"]``, picked with verification/work_precision's findings (P2 elements,
+  few of them, large BDF2 steps, Newton tolerance 1e-4): the cheapest run tried whose error is
+  no larger than MoorDyn-C's. OC4: P2 x 7 per line, dt 0.4 s, of P2 x 5, 7, 8, 10, 14 and P3 x 5
+  at dt 0.05-0.4 s. Flume snap: P1 x 14, dt 0.17 s (work_precision's pick at MoorDyn's
+  20-segment level, ``benchmarks/flume_snap.toml``), of that and P2 x 7-20, P3 x 7 at dt
+  0.04-0.16 s, all of which are more accurate (7.4-13 %) and costlier.
+
+Times are CPU seconds of this process (``time.process_time``) per simulated second, the median of
+``--repeats`` rounds, each round running every row in turn (the machine is shared; contention
+hits both codes alike). Two times per row: ``steps``, the time inside the stepping calls
+(MoorDyn-C's ``Step``; cablefem's ``_march``, the compiled loops of every line), and ``run``, the
+whole in-process run (MoorDyn-C's ``Create``, ``Init`` with its initial-condition solve, and
+``Step``, the peer's Python bookkeeping between the calls left out in MoorDyn's favour;
+cablefem's whole ``run_scene``: statics, set-up, steps, tensions.csv and the VTK frames). The
+ratio is cablefem's run time over MoorDyn-C's. numba's kernels are compiled and loaded before
+timing (a fresh process: ``benchmarks/startup.py``).
+
+Error (``error``, as verification/work_precision defines it): the RMS over the last two periods
+of the difference between a run's fairlead tension and the reference's (interpolated to the
+run's times), relative to the reference's mean over that window; the largest over the lines.
+MoorDyn-C's tension is the force on the coupled point with its lines' end-node inertia subtracted
+(``forces_on_point``), the force cablefem's FEM reaction gives.
+
+References, cached in ``systems.json`` next to this script (``--reference`` recomputes them,
+~8 min for OC4, ~2 min for the flume), one per code:
+
+- OC4: MoorDyn-C at 8x the file's segments (160 per line, dtM 1e-4 s, its initial-condition
+  solve at 4e-4 s) and cablefem P2 x 80 per line at dt 0.005 s. They are 2.8 % RMS apart, all of
+  it in line 2, which goes slack (105 kN) and snaps (2.58 MN in MoorDyn-C, 2.54 MN in cablefem)
+  every period; lines 1 and 3 agree to 0.16 %. Each is nearer converged than that: from 80 to
+  160 segments MoorDyn-C moves 1.36 %, from P2 x 40 at dt 0.01 s cablefem moves 0.62 %; the
+  rest is the two models' physics in the snap (not aligned here as in validation/moordyn_aligned).
+  That is more than the errors measured, so each code is measured against its own reference
+  (``error``), as verification/work_precision does, and against the other's (``other``).
+- Flume snap: MoorDyn-C at 32x the file's segments (640, dtM 1.25e-4 s) and cablefem P2 x 320 at
+  dt 0.00125 s, 1.6 % apart (at 8x, 160 segments and P2 x 80, they were 10.6 % apart: MoorDyn-C
+  moved 9.4 % and cablefem 6.8 % on doubling; from 320 to 640 segments MoorDyn-C moves 3.4 %,
+  from P2 x 160 to 320 cablefem 3.1 %). The snap's tension bursts converge slowly; the errors
+  measured (18-28 %) are well above that.
+
+    python -m benchmarks.systems [--reference] [--repeats N] [--systems oc4-semi] [--json FILE]
+
+Last measured on the shared 2-core machine (load ~6), CPU s per simulated second, medians of 3
+rounds; errors in % RMS against the code's own reference and against the other's:
+
+    oc4-semi (100 s)                            run     steps   error  other  run ratio  steps ratio
+    MoorDyn-C, the file (20 segments, dtM 1e-3) 0.0159  0.0129   2.84   1.88   1.00       1.00
+    cablefem, defaults (P1 x 20, dt 0.01)       0.0452  0.0165   1.50   3.55   2.84       1.28
+    cablefem, best (P2 x 7, dt 0.4, tol 1e-4)   0.0093  0.0031   2.37   4.10   0.58       0.24
+
+    flume-snap (36 s)                           run     steps   error  other  run ratio  steps ratio
+    MoorDyn-C, the file (20 segments, dtM 5e-3) 0.0019  0.0019  28.39  28.32   1.00       1.00
+    cablefem, defaults (P1 x 20, dt 0.01)       0.0292  0.0072  25.12  25.07  15.19       3.78
+    cablefem, best (P1 x 14, dt 0.17, tol 1e-4) 0.0138  0.0024  17.88  18.05   7.21       1.25
+
+Issue 33's target for OC4 at the defaults (error no larger than MoorDyn-C's in <= 0.25x its
+in-process time) is not met: the error is (1.50 % against 2.84 %), the time is 2.84x. Two thirds
+of that run are its output: the scene writes a VTK frame every 0.1 s (1000 frames) and marches
+between them in 1000 calls; the same run with one frame took 1.27 s of CPU (steps 0.84 s)
+against 5.46 s (steps 1.86 s) side by side, ~0.8x MoorDyn-C's in-process time. The flume file
+is MoorDyn-C's cheapest case (21 nodes, dtM 5 ms: 0.07 s for 36 s), where cablefem's statics and
+frames alone cost several times that.
+"""
+
+import argparse
+import contextlib
+import json
+import sys
+import tempfile
+import time
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+if __package__ in (None, ""):
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+ROOT = Path(__file__).resolve().parents[1]
+CACHE = Path(__file__).resolve().with_name("systems.json")
+COUPLING_DT = 0.01  # s between MoorDyn-C's coupling calls; the references are kept on this grid
+
+#: per system: the scene, the MoorDyn file, the window's periods, the fine references, the best settings
+SYSTEMS = {
+    "oc4-semi": {
+        "scene": ROOT / "examples" / "oc4_semi.toml",
+        "moordyn": ROOT / "examples" / "oc4_semi.dat",
+        "period": 10.0, "window_periods": 2,
+        "moordyn_reference": {"segments": 8, "dtM": 1e-4, "ic_dtM": 4e-4},
+        "cablefem_reference": {"order": 2, "elements": 80, "dt": 0.005},
+        "best": {"order": 2, "elements": 7, "dt": 0.4, "tolerance": 1e-4},
+        "target": True,  # issue 33: at defaults, error <= MoorDyn-C's in <= 0.25x its in-process time
+    },
+    "flume-snap": {
+        "scene": ROOT / "benchmarks" / "flume_snap_defaults.toml",
+        "moordyn": ROOT / "benchmarks" / "flume_snap_20.dat",
+        "period": 6.0, "window_periods": 2,
+        "moordyn_reference": {"segments": 32, "dtM": 1.25e-4},
+        "cablefem_reference": {"order": 2, "elements": 320, "dt": 0.00125},
+        "best": {"order": 1, "elements": 14, "dt": 0.17, "tolerance": 1e-4},
+    },
+}
+
+
+def error(t, tension, t_ref, reference, t_from):
+    """RMS over t >= t_from [s] of ``tension`` (n, lines) [N] at times t (n,) minus ``reference``
+    (m, lines) at times t_ref (m,) interpolated to t, relative to the reference's mean over that
+    window; the largest over the lines."""
+    t, tension, reference = np.asarray(t), np.atleast_2d(np.asarray(tension).T).T, np.asarray(reference)
+    reference = np.atleast_2d(reference.T).T
+    window = t >= t_from - 1e-9
+    worst = 0.0
+    for k in range(tension.shape[1]):
+        on_run = np.interp(t[window], t_ref, reference[:, k])
+        worst = max(worst, float(np.sqrt(np.mean((tension[window, k] - on_run) ** 2)) / on_run.mean()))
+    return worst
+
+
+@contextlib.contextmanager
+def clocked(module, names):
+    """Inside the block, each function ``module.name`` adds the CPU seconds it spends to the yielded
+    dict's item ``name``."""
+    saved = {name: getattr(module, name) for name in names}
+    spent = dict.fromkeys(names, 0.0)
+
+    def timer(name, function):
+        def timed(*args, **kwargs):
+            begin = time.process_time()
+            try:
+                return function(*args, **kwargs)
+            finally:
+                spent[name] += time.process_time() - begin
+        return timed
+
+    for name, function in saved.items():
+        setattr(module, name, timer(name, function))
+    try:
+        yield spent
+    finally:
+        for name, function in saved.items():
+            setattr(module, name, function)
+
+
+def scene_of(system, order=None, elements=None, dt=None, tolerance=None):
+    """The system's scene, every line's element order, element count (per segment), the step dt [s]
+    and Newton's tolerance replaced where given."""
+    from cablefem.io import load_scene
+    from cablefem.model.line import Segment
+
+    scene = load_scene(str(SYSTEMS[system]["scene"]))
+    if order is not None or elements is not None:
+        lines = [replace(line, order=order or line.order,
+                         segments=tuple(Segment(s.type, s.length, elements or s.elements) for s in line.segments))
+                 for line in scene.lines]
+        scene = replace(scene, lines=lines)
+    solver = {key: value for key, value in (("dt", dt), ("tolerance", tolerance)) if value is not None}
+    return replace(scene, solver=replace(scene.solver, **solver)) if solver else scene
+
+
+def run_cablefem(scene, duration=None):
+    """``run_scene`` on ``scene``: t (n,) [s], fairlead tensions (n, lines) [N] after each step,
+    CPU seconds of the whole run and of its steps (inside ``_march``)."""
+    import cablefem.runs.run as runs
+
+    rows, spent, march = [], [0.0], runs._march
+
+    def timed(*args):
+        begin = time.process_time()
+        marched = march(*args)
+        spent[0] += time.process_time() - begin
+        rows.extend(marched)
+        return marched
+
+    runs._march = timed
+    try:
+        with tempfile.TemporaryDirectory(prefix="cablefem-systems-") as out:
+            start = time.process_time()
+            runs.run_scene(scene, out, duration=duration, progress=False)
+            run_s = time.process_time() - start
+    finally:
+        runs._march = march
+    t = np.array([row[0] for row in rows])
+    tension = np.array([[np.linalg.norm(forces[0]) for forces in row[1]] for row in rows])
+    return {"t": t, "tension": tension, "run_s": run_s, "steps_s": spent[0]}
+
+
+def run_moordyn(system, scene, segments=1, dtM=None, ic_dtM=None, duration=None):
+    """MoorDyn-C on the system's file, NumSegs times ``segments``, dtM and the initial-condition
+    solve's step [s] as given (default: the file's), coupled every 0.01 s under the scene's motion:
+    t (n,) [s], tensions (n, points) [N] on the coupled points (end-node inertia subtracted), CPU
+    seconds of Create + Init + Step (``run_s``) and of Step (``steps_s``)."""
+    import moordyn
+
+    from validation.moordyn.runners import run_moordyn_case
+
+    duration = scene.solver.duration if duration is None else duration
+    with clocked(moordyn, ["Create", "Init", "Step"]) as spent:
+        result = run_moordyn_case(SYSTEMS[system]["moordyn"], scene, duration,
+                                  {"segments": segments, "dtM": dtM, "ic_dtM": ic_dtM}, coupling_dt=COUPLING_DT)
+    return {"t": result["t"], "tension": np.linalg.norm(result["forces_on_point"], axis=2),
+            "run_s": sum(spent.values()), "steps_s": spent["Step"]}
+
+
+def references(system, recompute=False):
+    """The system's two fine runs on the coupling grid over the error window, from ``systems.json``
+    (computed and stored there if missing or ``recompute``): {"moordyn": {...}, "cablefem": {...}},
+    each with settings, t (m,) and tension (m, lines)."""
+    cached = json.loads(CACHE.read_text()) if CACHE.exists() else {}
+    if recompute or system not in cached:
+        spec, scene = SYSTEMS[system], scene_of(system)
+        t_from = window_start(system, scene)
+        grid = np.arange(round(t_from / COUPLING_DT), round(scene.solver.duration / COUPLING_DT) + 1) * COUPLING_DT
+        fine = {"moordyn": run_moordyn(system, scene, **spec["moordyn_reference"]),
+                "cablefem": run_cablefem(scene_of(system, **spec["cablefem_reference"]))}
+        cached[system] = {name: {"settings": spec[f"{name}_reference"], "cpu_s": run["run_s"], "t": grid.tolist(),
+                                 "tension": np.column_stack([np.interp(grid, run["t"], column)
+                                                             for column in run["tension"].T]).round(3).tolist()}
+                          for name, run in fine.items()}
+        CACHE.write_text(json.dumps(cached, indent=None) + "\n")
+    return {name: {**ref, "t": np.array(ref["t"]), "tension": np.array(ref["tension"])}
+            for name, ref in cached[system].items()}
+
+
+def window_start(system, scene):
+    """Start [s] of the error window: the last ``window_periods`` periods of the run."""
+    spec = SYSTEMS[system]
+    return scene.solver.duration - spec["window_periods"] * spec["period"]
+
+
+def rows_of(system):
+    """(label, runner) of the system's rows: MoorDyn-C on the file, cablefem at its defaults and at
+    its best settings."""
+    best = SYSTEMS[system]["best"]
+    label = f"cablefem, best (P{best['order']} x {best['elements']}, dt {best['dt']:g}, tol {best['tolerance']:g})"
+    return [("MoorDyn-C, the file", lambda: run_moordyn(system, scene_of(system))),
+            ("cablefem, defaults", lambda: run_cablefem(scene_of(system))),
+            (label, lambda: run_cablefem(scene_of(system, **best)))]
+
+
+def measure(system, repeats=3, recompute=False):
+    """Every row of ``system`` ``repeats`` times, the rows alternating: dict of the rows (label,
+    median CPU s per simulated second of run and steps, errors against both references, ratio of
+    run times to MoorDyn-C's) and the references' distance apart."""
+    refs = references(system, recompute)
+    scene = scene_of(system)
+    duration, t_from = scene.solver.duration, window_start(system, scene)
+    runners = rows_of(system)
+    for settings in ({}, SYSTEMS[system]["best"]):  # numba's kernels loaded, MoorDyn's library too
+        run_cablefem(scene_of(system, **settings), duration=0.1)
+    run_moordyn(system, scene, duration=0.1)
+    times = {label: {"run_s": [], "steps_s": []} for label, _ in runners}
+    errors = {}
+    for _ in range(repeats):
+        for label, runner in runners:
+            run = runner()
+            times[label]["run_s"].append(run["run_s"])
+            times[label]["steps_s"].append(run["steps_s"])
+            errors[label] = {name: error(run["t"], run["tension"], ref["t"], ref["tension"], t_from)
+                             for name, ref in refs.items()}
+    rows = [{"label": label, "run_per_s": float(np.median(times[label]["run_s"])) / duration,
+             "steps_per_s": float(np.median(times[label]["steps_s"])) / duration,
+             "run_s": times[label]["run_s"], "steps_s": times[label]["steps_s"], "errors": errors[label]}
+            for label, _ in runners]
+    for row, own in zip(rows, ("moordyn", "cablefem", "cablefem")):
+        row["ratio"] = row["run_per_s"] / rows[0]["run_per_s"]
+        row["steps_ratio"] = row["steps_per_s"] / rows[0]["steps_per_s"]
+        row["own_error"] = row["errors"][own]
+        row["other_error"] = row["errors"]["cablefem" if own == "moordyn" else "moordyn"]
+    apart = error(refs["cablefem"]["t"], refs["cablefem"]["tension"], refs["moordyn"]["t"], refs["moordyn"]["tension"],
+                  t_from)
+    return {"system": system, "duration_s": duration, "window_from_s": t_from, "repeats": repeats, "rows": rows,
+            "references": {name: ref["settings"] for name, ref in refs.items()}, "references_apart": apart}
+
+
+def table(result):
+    """The rows of one system as text, and the issue's target for cablefem at its defaults."""
+    refs = result["references"]
+    lines = [f"{result['system']}: {result['duration_s']:g} s simulated, CPU s per simulated second (median of "
+             f"{result['repeats']}), error % RMS over t >= {result['window_from_s']:g} s against each code's own "
+             f"reference (MoorDyn-C {refs['moordyn']}, cablefem {refs['cablefem']}; "
+             f"{100 * result['references_apart']:.2f} % apart) and against the other's",
+             f"{'row':54s} {'run':>7s} {'steps':>7s} {'error':>6s} {'other':>6s} {'run ratio':>9s} {'steps ratio':>11s}"]
+    for row in result["rows"]:
+        lines.append(f"{row['label']:54s} {row['run_per_s']:7.4f} {row['steps_per_s']:7.4f} "
+                     f"{100 * row['own_error']:6.2f} {100 * row['other_error']:6.2f} "
+                     f"{row['ratio']:9.2f} {row['steps_ratio']:11.2f}")
+    if not SYSTEMS[result["system"]].get("target"):
+        return "\n".join(lines)
+    moordyn, defaults = result["rows"][0], result["rows"][1]
+    met = defaults["own_error"] <= moordyn["own_error"] and defaults["ratio"] <= 0.25
+    lines.append(f"target, cablefem at its defaults: error <= MoorDyn-C's ({100 * defaults['own_error']:.2f} against "
+                 f"{100 * moordyn['own_error']:.2f} %) in <= 0.25x its in-process time ({defaults['ratio']:.2f}x): "
+                 f"{'met' if met else 'not met'}")
+    return "\n".join(lines)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--systems", nargs="+", default=list(SYSTEMS), choices=list(SYSTEMS))
+    parser.add_argument("--repeats", type=int, default=3, help="rounds of every row (the median is kept)")
+    parser.add_argument("--reference", action="store_true", help="recompute the references (minutes)")
+    parser.add_argument("--json", help="write the results to this JSON file")
+    args = parser.parse_args(argv)
+    results = []
+    for system in args.systems:
+        results.append(measure(system, args.repeats, args.reference))
+        print(table(results[-1]), flush=True)
+    if args.json:
+        Path(args.json).write_text(json.dumps(results, indent=1) + "\n")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,57 @@
+"""benchmarks/systems.py's error and its scenes: the error is zero for equal series and the closed
+form for a shifted sine; the best row changes only what it says it changes."""
+
+import numpy as np
+import pytest
+
+from benchmarks.systems import SYSTEMS, error, scene_of
+
+PERIOD, MEAN, AMPLITUDE = 10.0, 1.0e6, 2.0e5
+
+
+def sine(t, shift=0.0):
+    return MEAN + AMPLITUDE * np.sin(2 * np.pi * (t - shift) / PERIOD)
+
+
+def test_error_of_equal_series_is_zero():
+    t = np.linspace(0.0, 100.0, 10001)
+    series = np.column_stack([sine(t), sine(t, 1.0)])
+    assert error(t, series, t, series, 80.0) == 0.0
+
+
+@pytest.mark.parametrize("shift", [0.05, 0.5, 2.5])
+def test_error_of_shifted_sine_is_the_closed_form(shift):
+    """RMS of A sin(w (t - s)) - A sin(w t) over whole periods is sqrt(2) A |sin(w s / 2)|; the run
+    on a coarser grid than the reference's, so the reference is interpolated to the run's times."""
+    t_ref = np.arange(0.0, 100.0 + 1e-9, 0.001)
+    t_run = np.arange(0.0, 100.0, 0.1) + 0.1  # the run's steps, not the reference's grid
+    expected = np.sqrt(2) * AMPLITUDE * abs(np.sin(np.pi * shift / PERIOD)) / MEAN
+    got = error(t_run, sine(t_run, shift)[:, None], t_ref, sine(t_ref)[:, None], 80.0 + 0.05)
+    assert got == pytest.approx(expected, rel=2e-3)
+
+
+def test_error_is_the_largest_over_the_lines():
+    t = np.linspace(0.0, 100.0, 10001)
+    reference = np.column_stack([sine(t), sine(t), sine(t)])
+    run = np.column_stack([sine(t, 0.1), sine(t, 1.0), sine(t)])
+    alone = error(t, run[:, 1:2], t, reference[:, 1:2], 80.0)
+    assert error(t, run, t, reference, 80.0) == alone > error(t, run[:, :1], t, reference[:, :1], 80.0)
+
+
+def test_error_window_ignores_what_comes_before_it():
+    t = np.linspace(0.0, 100.0, 10001)
+    run = sine(t)[:, None].copy()
+    run[t < 80.0] *= 3.0
+    assert error(t, run, t, sine(t)[:, None], 80.0) == 0.0
+
+
+@pytest.mark.parametrize("system", list(SYSTEMS))
+def test_best_scene_changes_only_order_elements_step_and_tolerance(system):
+    best = SYSTEMS[system]["best"]
+    default, tuned = scene_of(system), scene_of(system, **best)
+    assert [line.order for line in tuned.lines] == [best["order"]] * len(default.lines)
+    assert [s.elements for line in tuned.lines for s in line.segments] == [best["elements"]] * len(default.lines)
+    assert (tuned.solver.dt, tuned.solver.tolerance) == (best["dt"], best["tolerance"])
+    assert [s.length for line in tuned.lines for s in line.segments] == \
+        [s.length for line in default.lines for s in line.segments]
+    assert tuned.motion == default.motion and tuned.solver.duration == default.solver.duration
