@@ -297,7 +297,7 @@ def test_lagrange_lines_report_zero_curvature_and_scenes_without_ei_no_bending_c
     from cablefem.runs.run import _columns
     from cablefem.runs.bending_rows import BendingRows
 
-    assert not BendingRows(scene.lines) and _columns(scene, None, BendingRows(scene.lines))[-1] == "fz"
+    assert not BendingRows(scene.lines) and _columns(scene, bending=BendingRows(scene.lines))[-1] == "fz"
 
 
 def test_two_bending_lines_joined_through_a_free_point_are_one_c1_string(tmp_path):

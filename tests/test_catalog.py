@@ -116,8 +116,11 @@ def test_compiled_face_equals_the_numpy_face(name, order, rng):
     fused = FusedEvaluator.for_system(system, system.props["mass"])
     rows_ref, K_ref = reference(system, X, V, A, 150.0, 2.2e4)
     rows, band = fused.evaluate(X, V, A, 150.0, 2.2e4, h=H)
-    # the same sums in another order: equal to round-off
-    np.testing.assert_allclose(rows, rows_ref, rtol=0, atol=1e-12 * np.abs(rows_ref).max())
+    # the same sums in another order: equal to round-off. SYROPE's BA (5e10 N s) multiplies the round-off
+    # of its strain rates, the rows' difference falling with it (on Hermite elements: 2.6e-12 of the
+    # largest row at that BA, 1.7e-13 at BA / 10, 1.7e-14 at BA / 100)
+    tolerance = 1e-11 if name.startswith("rope+syrope") else 1e-12
+    np.testing.assert_allclose(rows, rows_ref, rtol=0, atol=tolerance * np.abs(rows_ref).max())
     np.testing.assert_allclose(fused.dense(band), K_ref, rtol=0, atol=1e-12 * np.abs(K_ref).max())
 
 
