@@ -92,17 +92,20 @@ def moordyn_text(segments, dtM, ic=None, rods=True):
     return "\n".join(rows) + "\n"
 
 
-def cablefem_scene(elements, folder):
+def cablefem_scene(elements, folder, options=None, moving=True):
     """cablefem's Scene of the case at ``elements`` (Hermite elements per section), read from the POINTS
-    variant of the file (written to ``folder``) by cablefem's MoorDyn reader, its top clamped along
-    the hang-off Rod, moving with ``MOTION``."""
+    variant of the file (written to ``folder``, with more OPTIONS ``options``: a ``WaveKin``) by
+    cablefem's MoorDyn reader, its top clamped along the hang-off Rod, moving with ``MOTION`` (held
+    still unless ``moving``)."""
     from cablefem.io import load_scene
     from cablefem.model.scene import Motion
 
     path = Path(folder) / f"lazy_wave_points_{'_'.join(map(str, elements))}.dat"
-    path.write_text(moordyn_text(elements, 1e-4, rods=False))
+    path.write_text(moordyn_text(elements, 1e-4, options, rods=False))
     scene = load_scene(path)
     line, = scene.lines
     line = replace(line, tangents=(None, np.array([0.0, 0.0, 1.0])))
+    if not moving:
+        return replace(scene, lines=[line])
     motion = Motion(kind="harmonic", amplitude=MOTION["amplitude"], period=MOTION["period"], ramp=MOTION["ramp"])
     return replace(scene, lines=[line], motion=motion)

@@ -108,18 +108,21 @@ def initialised(path, x=(), v=()):
         os.chdir(cwd)
 
 
-def run(segments, dtM, start, duration=0.0, dt_out=0.05, motion=None, keep=None, every=1):
+def run(segments, dtM, start, duration=0.0, dt_out=0.05, motion=None, keep=None, every=1, options=None, files=None):
     """MoorDyn's static solve from ``start`` (positions(s) -> (n, 3)) and, with ``duration``, its run under
     ``motion`` (t -> hang-off position (3,)); a dict: the static hang-off force (3,), moment (3,) and
     curvature peak (value, arc length), the relaxation's wall time; with a run, the times (m,), the
     force (m, 3), moment (m, 3) and curvature peak (m,) at every ``every``-th coupling time, and the
     wall time of its ``Step`` calls (the outputs read between them not counted). ``keep``: a folder to
-    leave MoorDyn's files in."""
+    leave MoorDyn's files in; ``options``: more OPTIONS (name -> value: a ``WaveKin``); ``files``:
+    {name: text} of data files written beside the input (its ``wave_frequencies.txt``)."""
     folder = Path(keep or tempfile.mkdtemp(prefix="cables-moordyn-"))
     folder.mkdir(parents=True, exist_ok=True)
     write_start(folder / "start.bin", segments, start)
     path = folder / "lazy_wave.dat"
-    path.write_text(case.moordyn_text(segments, dtM, {**IC, "fileIC": "start.bin"}))
+    path.write_text(case.moordyn_text(segments, dtM, {**IC, "fileIC": "start.bin", **(options or {})}))
+    for name, text in (files or {}).items():
+        (folder / name).write_text(text)
     arcs = _node_arc_lengths(segments)
     hang = np.array(case.HANG_OFF, dtype=float)
     out = {"segments": list(segments), "dtM": dtM}
