@@ -19,6 +19,8 @@ Mapping (each conversion checked against the MoorDyn 2.7 library, docs/scene.md)
 - BA >= 0 is the internal damping coefficient [N s]: beta = BA / EA [s];
   BA < 0 is -zeta, MoorDyn's BA = zeta (UnstrLen / NumSegs) sqrt(EA m);
 - CdAx refers to the surface area pi d l, desire2023 Eq. 3 to d: Cd_tangential = pi CdAx;
+- EI > 0: the line is read on Hermite elements (``cablefem.loads.bending``), NumSegs elements;
+  MoorDyn lumps EI as couples between neighbouring nodes, cablefem integrates 1/2 EI kappa^2;
 - kBot, cBot -> Contact.stiffness [N/m^3], Contact.damping [N s/m^3], with MoorDyn-C's damper
   acting on penetrating nodes moving out too (Contact.damping_when_opening);
 - MoorDyn-C friction is isotropic saturated damping (housner2022 Sec. 2.2 with one
@@ -98,7 +100,8 @@ def _line_types(rows, v1, notes):
         if law:  # read per line (BA = -zeta depends on the line's segments): _line_type
             values["law"] = (fields[3], fields[4])
         if values["EI"] != 0.0:
-            notes.append(f"LINE TYPES.{name}: EI = {values['EI']:g} N m^2 ignored (no bending stiffness)")
+            notes.append(f"LINE TYPES.{name}: EI = {values['EI']:g} N m^2: its lines are read on Hermite elements "
+                         "(positions and tangents at the nodes), NumSegs elements each, pinned at both ends")
         if any(is_number(f) and float(f) != 0.0 for f in fields[10:]):
             notes.append(f"LINE TYPES.{name}: columns after CaAx ignored ({' '.join(fields[10:])})")
         types[name] = (number, values)
@@ -322,7 +325,8 @@ def _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, not
             section = "SYROPE IC" if raw["id"] in syrope_rows else "LINES"
             raise InputError(error.reason, key=_at(where, f"{section}.{raw['id']}")) from None
         a, b = (point_position(scene_points[name], scene_bodies) for name in raw["ends"])
-        parts.append(Line(raw["id"], a, b, [segment], ends=tuple(raw["ends"])))
+        element = "hermite" if segment.type.EI > 0 else "lagrange"  # bending needs C1 elements
+        parts.append(Line(raw["id"], a, b, [segment], ends=tuple(raw["ends"]), element=element))
 
     def where(key):  # a key of network.strings' errors, as it stands in the file
         if key.startswith("points."):
@@ -370,7 +374,7 @@ def _line_type(raw, raw_types, built, folder, notes):
     if name not in built:  # values were checked by _line_types
         built[name] = LineType(name, props["Diam"], props["MassDen"], EA, beta,
                                Cd_normal=props["Cd"], Cd_tangential=math.pi * props["CdAx"],
-                               Ca_normal=props["Ca"], Ca_tangential=props["CaAx"],
+                               Ca_normal=props["Ca"], Ca_tangential=props["CaAx"], EI=props["EI"],
                                damping_when_slack=True, axial=law)  # MoorDyn-C's own law (Line.cpp, Td[i])
     return built[name]
 
