@@ -3,8 +3,8 @@
 Sections read: LINE TYPES (v2 columns, or the v1 header read by position as MoorDyn-C reads it),
 BODIES, POINTS, LINES, OPTIONS (value first: ``850 WtrDpth``) and OUTPUTS (channel names, up to
 ``END``, recorded and ignored). Rows before the first recognised ``---`` header are the title
-(``moordyn_sections`` cuts the file). What cablefem does not read (RODS, WaveKin 1, nonlinear
-EA, ...) is refused with what to do instead, from the one list ``moordyn_sections.REFUSED``. Numbers
+(``moordyn_sections`` cuts the file). What cablefem does not read (RODS, WaveKin 4 to 6, Currents 2 to
+5, ...) is refused with what to do instead, from the one list ``moordyn_sections.REFUSED``. Numbers
 and IDs are ASCII (``str.isdigit`` and ``float`` would take other scripts' digits) and within the
 sane limits of ``validate.LIMITS``.
 
@@ -15,7 +15,8 @@ Mapping (each conversion checked against the MoorDyn 2.7 library, docs/scene.md)
   first. Junctions of three or more line ends and free bodies are read as they are: the statics
   solve them (``cablefem.statics.network``), a run refuses what it cannot step (``network.check_no_coupling``);
 - ``Currents 1``: the steady profile of ``current_profile.txt`` beside the file (``io.currents``);
-- ``WaveKin`` 2, 3 and 7: the waves of their files beside the file (``io.moordyn_waves``);
+- ``WaveKin`` 2, 3 and 7: the waves of their files beside the file (``io.moordyn_waves``); ``WaveKin 1``
+  (kinematics through MoorDyn-C's API, still water until a program sets them): still water, with a note;
 - BA >= 0 is the internal damping coefficient [N s]: beta = BA / EA [s];
   BA < 0 is -zeta, MoorDyn's BA = zeta (UnstrLen / NumSegs) sqrt(EA m);
 - CdAx refers to the surface area pi d l, desire2023 Eq. 3 to d: Cd_tangential = pi CdAx;
@@ -206,6 +207,11 @@ def _waves(path, options, numbers, depth, gravity, read, notes):
     if mode == 0.0:
         return None
     key = _at(numbers["wavekin"], "OPTIONS.WaveKin")
+    if mode == 1.0 and read:
+        notes.append("WaveKin 1: MoorDyn-C takes the waves through its API (ExternalWaveKinSet) and has still water "
+                     "until a program sets them; a file alone is run in still water, as MoorDyn-C runs it (give "
+                     "[waves] in a TOML that wraps the file for waves)")
+        return None
     if not read:
         notes.append(f"WaveKin {mode:g} of {os.path.basename(path)} replaced by the TOML's [waves]")
         return None

@@ -46,8 +46,8 @@ REFUSED = {
     "ROD TYPES": ("ROD TYPES (properties of RODS)",
                   "model a rod as a short stiff line between two points, or fix its line ends to a body"),
     "FAILURE": ("FAILURE (line breakage during a run)", "run the intact and the broken system as two scenes"),
-    "WaveKin": ("wave kinematics other than WaveKin 0, 2, 3 and 7 (1: set through MoorDyn's API; 4 to 6: not "
-                "implemented in MoorDyn-C either)",
+    "WaveKin": ("wave kinematics other than WaveKin 0, 1, 2, 3 and 7 (4 to 6: not implemented in MoorDyn-C "
+                "either)",
                 "give the waves as [waves] in a TOML that wraps the file, or write them as wave_frequencies.txt "
                 "with WaveKin 7"),
     "Currents": ("a time-varying or gridded current (Currents 2 to 5)",
