@@ -36,7 +36,7 @@ Measured on MoorDyn v2.7.1's tests/Mooring (the moordyn 2.7 wheel; 2 shared core
   | BeamSimplySupported.txt | 2770 % | its EI: read without bending stiffness here (a note says so) |
   | body_tests/bodyDrag.txt | 232 % | a free body: cablefem's static equilibrium against MoorDyn-C's dynamic relaxation, not yet explained |
   | syrope/exp_wc, quadratic_wc | 89 %, 35 % | SYROPE's working curves: linear_wc agrees (0.00 %), so the nonlinear curves' initial state differs, not yet explained |
-  | wavekin_2.txt, wavekin_3.txt, wavekin_7.txt | 2.8 %, 2.8 %, 2.6 % | TmaxIC 0 or 60 in waves: MoorDyn-C's start is not a static equilibrium |
+  | wavekin_2.txt, wavekin_3.txt, wavekin_7.txt | 2.8 %, 2.8 %, 2.6 % | TmaxIC 0: MoorDyn-C starts from its initial shape without relaxing it (the _curr2 files, with TmaxIC 200 and the fairlead 2 m higher, agree to 0.41 %) |
   | lowe_and_langley_2006/line.txt | 2.1 % | its EI, as above |
 """
 
