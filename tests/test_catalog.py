@@ -19,6 +19,7 @@ from cablefem.model.scene import Contact, Friction
 from cablefem.fem.system import LineSystem
 from cablefem.loads.morison import Morison
 from cablefem.waves import Sea
+from cablefem.waves.grid import CurrentGrid
 
 from rope_cases import rope_state, rope_system
 from test_loads import (ROPE, assert_tangent_matches_finite_differences, line_state, soil_state, soil_system,
@@ -29,14 +30,19 @@ ROPE_VARIANTS = ["damping_table", "viscoelastic", "load_dependent", "syrope", "s
 
 #: every catalog load, the two that see the current once more in a current varying with depth, the
 #: contact and its friction with the seabed's damper acting on points moving out too, in waves (the
-#: Morison load is the line's in waves; points see the waves too), and the rope's laws
+#: Morison load is the line's in waves; points see the waves too), with a current on a grid varying in
+#: time besides (MoorDyn-C's Currents 5), and the rope's laws
 NAMES = [spec.name for spec in catalog.CATALOG] + ["drag+profile", "points+profile", "contact+opening",
                                                    "friction+opening", "morison+profile", "points+waves",
-                                                   "points+waves-profile"] + [f"rope+{kind}" for kind in ROPE_VARIANTS]
+                                                   "points+waves-profile", "morison+grid", "points+waves-grid"] \
+    + [f"rope+{kind}" for kind in ROPE_VARIANTS]
 #: the step of the tests' evaluations [s]: a rope's slow strain steps over it (``cablefem.loads.rope``)
 H = 0.05
 #: two components over the test line (its top at the surface: some points there are above the crests)
 SEA = Sea.from_components([1.5, 0.6], [2 * np.pi / 9.0, 1.1], [0.35, -0.5], [0.4, 2.0], 100.0)
+#: the same sea with a current on a grid over the test line (x, z) and beyond it in y (held), three times
+_AXES = (np.array([-900.0, -500.0, -200.0, 50.0]), np.array([-20.0, 20.0]), np.array([-130.0, -60.0, -20.0, 5.0]))
+SEA_GRID = replace(SEA, current=CurrentGrid(*_AXES, 4.0, np.random.default_rng(7).uniform(-0.8, 0.8, (4, 2, 4, 3, 3))))
 #: a sheared current over the test line's heights (about -100 m to the surface, the clump near the
 #: seabed and the buoy at the surface both on a sloping piece), bending at four heights
 PROFILE = CurrentProfile.from_arrays([-130.0, -70.0, -30.0, 5.0],
@@ -76,13 +82,15 @@ def one_load_system(name, order):
         joints = ((1, Joint("clump", mass=2e3, volume=0.3, CdA=1.5, Ca=1.0)),
                   (2, Joint("buoy", mass=100.0, volume=2.0, CdA=2.0, Ca=0.5)))
         line = replace(line, segments=(half, half), joints=joints, prescribed=(True, False))
-        environment = replace(system.environment, waves=SEA if variant.startswith("waves") else None)
+        environment = replace(system.environment, waves=(SEA_GRID if variant == "waves-grid" else SEA)
+                              if variant.startswith("waves") else None)
         system = LineSystem(line, SEABED, Contact(stiffness=0.0), environment, dynamic=True)
     if name == "morison":
         env, props = system.environment, system.props
         system.loads.append(Morison(props["diameter"], np.full(len(props["diameter"]), 2.0),
                                     np.full(len(props["diameter"]), 0.4), np.full(len(props["diameter"]), 1.0),
-                                    np.full(len(props["diameter"]), 0.5), env.water_density, SEA, env.current,
+                                    np.full(len(props["diameter"]), 0.5), env.water_density,
+                                    SEA_GRID if variant == "grid" else SEA, env.current,
                                     profile=env.current_profile))
     # the last of each: the test's own contact (the catalog's has no stiffness here)
     system.loads = [[load for load in system.loads if catalog.spec_of(load).name == wanted][-1]

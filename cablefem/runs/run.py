@@ -80,7 +80,8 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
 
     check_names(scene)
     check_run(scene, duration, dt)
-    sea = scene.environment.waves
+    water = scene.environment.waves
+    sea = water if water is not None and water.count else None  # waves (a current alone has no surface)
     if sea is not None and scene.name == SURFACE:
         raise InputError(f"a scene in waves may not be named '{SURFACE}': its frames and the free surface's would "
                          f"both be {SURFACE}.pvd", key="name", file=scene.where("name")[0])
@@ -96,7 +97,8 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
     start = time.perf_counter()
     summary = {"scene": scene.name, "seabed": scene.seabed.describe(),
                "notes": list(scene.notes) + setting_warnings(scene, dt), "dt": dt, "duration": duration,
-               **({"waves": sea.describe()} if sea is not None else {})}
+               **({"waves": sea.describe()} if sea is not None else {}),
+               **({"current": water.current.describe()} if water is not None and water.current is not None else {})}
     integrators, outputs, status = [], {}, "completed"
     tracker = _Extremes([line.name for line in scene.lines], NetworkRows(scene) if scene.points else None, sea,
                         BendingRows(scene.lines))
