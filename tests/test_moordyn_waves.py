@@ -73,6 +73,23 @@ def test_wavekin_2_and_3_equal_moordyn_cs_grid_at_its_nodes(name):
         assert np.allclose(ours.acceleration[i], Ud, atol=1e-3 * np.abs(Ud).max())
 
 
+def test_wavekin_1_is_still_water_as_moordyn_c_runs_the_file_alone(tmp_path):
+    """WaveKin 1 takes the kinematics through MoorDyn-C's API; run from the file alone MoorDyn-C's water
+    stays still (its own kinematics at a point, before and after a step), and cablefem reads the file as
+    the same file with WaveKin 0, saying so in a note."""
+    path = os.path.join(DATA, "wavekin_wave_1.txt")
+    points = np.array([[200.0, 0.0, -10.0], [0.0, 0.0, -1.0]])
+    for kinematics in moordyn_kinematics(path, points, [0.0, 1.0]):
+        assert np.all(np.abs(np.array([np.concatenate((U, Ud, [zeta])) for U, Ud, zeta in kinematics])) == 0.0)
+    still = tmp_path / "still.txt"
+    with open(path) as source:
+        still.write_text(source.read().replace("1             WaveKin", "0             WaveKin"))
+    ours, theirs = load_scene(path), load_scene(str(still))
+    assert ours.environment.waves is None
+    assert any(note.startswith("WaveKin 1: ") and "still water" in note for note in ours.notes)
+    assert repr((ours.lines, ours.environment)) == repr((theirs.lines, theirs.environment))
+
+
 def test_a_toml_wrapping_a_moordyn_file_may_give_waves_instead(tmp_path):
     source = os.path.join(DATA, "wavekin_7", "wavekin_7.txt")
     shutil.copy(source, tmp_path / "lines.txt")  # without its wave_frequencies.txt
@@ -84,8 +101,8 @@ def test_a_toml_wrapping_a_moordyn_file_may_give_waves_instead(tmp_path):
 
 
 BAD = [
-    ("1   WaveKin", {}, "line 22: OPTIONS.WaveKin", "wave kinematics other than WaveKin 0, 2, 3 and 7"),
-    ("5   WaveKin", {}, "line 22: OPTIONS.WaveKin", "wave kinematics other than WaveKin 0, 2, 3 and 7"),
+    ("4   WaveKin", {}, "line 22: OPTIONS.WaveKin", "wave kinematics other than WaveKin 0, 1, 2, 3 and 7"),
+    ("5   WaveKin", {}, "line 22: OPTIONS.WaveKin", "wave kinematics other than WaveKin 0, 1, 2, 3 and 7"),
     ("7   WaveKin", {}, "line 22: OPTIONS.WaveKin (wave_frequencies.txt beside the file)", "file not found"),
     ("7   WaveKin", {"wave_frequencies.txt": "0.1 0.0 0.0\n0.3 1.0 0.0\n"}, "line 22: OPTIONS.WaveKin",
      "wave_frequencies.txt: the first frequency must be 0 rad/s"),

@@ -45,13 +45,14 @@ REFUSED = {
              "model a rod as a short stiff line between two points, or fix its line ends to a body (BodyN points)"),
     "ROD TYPES": ("ROD TYPES (properties of RODS)",
                   "model a rod as a short stiff line between two points, or fix its line ends to a body"),
-    "WaveKin": ("wave kinematics other than WaveKin 0, 2, 3 and 7 (1: set through MoorDyn's API; 4 to 6: not "
-                "implemented in MoorDyn-C either)",
+    "WaveKin": ("wave kinematics other than WaveKin 0, 1, 2, 3 and 7 (4 to 6: not implemented in MoorDyn-C "
+                "either)",
                 "give the waves as [waves] in a TOML that wraps the file, or write them as wave_frequencies.txt "
                 "with WaveKin 7"),
-    "Currents": ("a time-varying or gridded current (Currents 2 to 5)",
-                 "give a steady profile: Currents 1 with current_profile.txt, or [environment] current_profile "
-                 "in a TOML that wraps the file"),
+    "Currents": ("MoorDyn-C's node approach to currents (Currents 3 and 4, for which MoorDyn-C 2.7 builds no "
+                 "current)",
+                 "give the current on a grid: Currents 1 (current_profile.txt), 2 (current_profile_dynamic.txt) or "
+                 "5 (current_profile_4d.txt)"),
     "turbine": ("points on a FAST.Farm turbine (TurbineN, MoorDyn-F)",
                 "attach them to a coupled body (BodyN) of BODIES, or make them Coupled points"),
 }

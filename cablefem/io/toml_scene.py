@@ -22,7 +22,7 @@ except ModuleNotFoundError:  # Python 3.10
 from cablefem.errors import InputError
 from cablefem.geometry import Horizontal, Plane, choose_seabed
 from cablefem.geometry.readers import MAX_COORDINATE
-from cablefem.model.line import Line, LineType, Segment
+from cablefem.model.line import ELEMENTS, Line, LineType, Segment
 from cablefem.dynamics.registry import INTEGRATORS
 from cablefem.model.scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
 from cablefem.io import axial_input, validate as v
@@ -69,9 +69,10 @@ LINE_TYPE_KEYS = {"diameter": v.limited(v.positive, "diameter"), "mass": v.limit
                   "BA_dynamic": v.limited(v.non_negative, "internal_damping"), "syrope": axial_input.toml_syrope,
                   "Cd_normal": _COEFFICIENT, "Cd_tangential": _COEFFICIENT, "Ca_normal": _COEFFICIENT,
                   "Ca_tangential": _COEFFICIENT, "damping_when_slack": v.boolean,
-                  "nominal_diameter": v.limited(v.positive, "diameter")}
+                  "nominal_diameter": v.limited(v.positive, "diameter"), "EI": v.limited(v.non_negative, "EI")}
 LINE_KEYS = {"name": v.text, "anchor": lambda value, key: value, "fairlead": lambda value, key: value,
-             "segments": v.tables, "order": _ORDER, "quadrature_points": v.whole}  # an end: coordinates or a point's name (toml_network.end)
+             "segments": v.tables, "order": _ORDER, "quadrature_points": v.whole,  # an end: coordinates or a point's name (toml_network.end)
+             "element": v.choice(ELEMENTS), "anchor_tangent": v.vector3, "fairlead_tangent": v.vector3}
 SEGMENT_KEYS = {"type": v.text, "length": _LENGTH, "elements": _ELEMENTS, "syrope": axial_input.toml_initial}
 CONTACT_KEYS = {"stiffness": v.limited(v.positive, "stiffness"),
                 "damping_ratio": v.limited(v.non_negative, "damping_ratio"),
@@ -262,9 +263,14 @@ def _lines(raw, types, points=None, bodies=None):
         (anchor, a), (fairlead, b) = (end(values[key], f"{prefix}.{key}", points) for key in ("anchor", "fairlead"))
         anchor = anchor if a is None else point_position(points[a], bodies)
         fairlead = fairlead if b is None else point_position(points[b], bodies)
+        element = values.get("element", "lagrange")
+        if element == "hermite" and values.get("order", 3) != 3:
+            raise InputError(f"Hermite elements are cubic (order 3); leave order out, got {values['order']}",
+                             key=f"{prefix}.order")
         try:
             line = Line(name, anchor, fairlead, segments, values.get("order", 1), ends=(a, b),
-                        quadrature_points=values.get("quadrature_points", 0))
+                        quadrature_points=values.get("quadrature_points", 0), element=element,
+                        tangents=(values.get("anchor_tangent"), values.get("fairlead_tangent")))
         except InputError as error:
             raise error.within(prefix=prefix) from None
         lines.append(v.check_chord(line, prefix) if (a, b) == (None, None) else line)

@@ -16,6 +16,7 @@ KEY_UNITS = {
     ("environment", "current"): "m/s",
     ("line_types.NAME", "diameter"): "m", ("line_types.NAME", "mass"): "kg/m", ("line_types.NAME", "EA"): "N",
     ("line_types.NAME", "damping"): "s", ("line_types.NAME", "nominal_diameter"): "m",
+    ("line_types.NAME", "EI"): "N m²",
     ("line_types.NAME", "BA"): "N s", ("line_types.NAME", "EA_dynamic"): "N", ("line_types.NAME", "BA_dynamic"): "N s",
     ("lines", "segments.syrope"): "N",
     ("lines", "anchor"): "m", ("lines", "fairlead"): "m", ("lines", "segments.length"): "m",
