@@ -95,9 +95,9 @@ def release(scene, integ, end):
     same state: positions, velocities, the scheme's memory and clock, the history of the points and
     the counters; its acceleration the one its loads give with that end free."""
     old = integ.system
-    prescribed, ends = list(old.line.prescribed), list(old.line.ends)
-    prescribed[end], ends[end] = False, None
-    line = replace(old.line, prescribed=tuple(prescribed), ends=tuple(ends))
+    prescribed, ends, tangents = list(old.line.prescribed), list(old.line.ends), list(old.line.tangents)
+    prescribed[end], ends[end], tangents[end] = False, None, None  # a clamped tangent lets go with its end
+    line = replace(old.line, prescribed=tuple(prescribed), ends=tuple(ends), tangents=tuple(tangents))
     system = build_system(scene, line)
     for rule, (committed, _) in old.history.items():
         system.history[rule][0][...] = committed
