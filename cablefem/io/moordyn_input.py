@@ -56,6 +56,7 @@ from cablefem.io.currents import GRID_FILES, MOORDYN_FILE, read_current_grid, re
 from cablefem.io.moordyn_waves import DT_WAVE, read_wave_kin
 from cablefem.waves import Sea
 from cablefem.io.moordyn_network import line_end, read_bodies, read_points
+from cablefem.io.failures import read_moordyn_failures
 from cablefem.io.moordyn_sections import (TABLE_COLUMNS, at as _at, parse_sections, refuse, split_sections,
     value as _value)
 
@@ -292,6 +293,7 @@ def _build(path, text, simplify=True, waves=True):
     syrope_ic, syrope_rows = _syrope_ic(found["SYROPE IC"], raw_lines, raw_types)
     lines, keys = _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, notes, syrope_ic,
                            syrope_rows)
+    failures = read_moordyn_failures(found["FAILURE"], raw_lines, points, lines, _at)
     if seafloor is not None:
         keys["seabed"] = (path, _at(seafloor[1], "OPTIONS.SeafloorFile"))
         file = named_file(seafloor[0], keys["seabed"][1], os.path.dirname(path))
@@ -322,7 +324,7 @@ def _build(path, text, simplify=True, waves=True):
     return Scene(name=os.path.splitext(os.path.basename(path))[0], lines=lines, seabed=seabed,
                  contact=contact, environment=environment, friction=friction, solver=solver,
                  source=path, notes=notes, moordyn_options=raw_options, keys=keys, points=scene_points,
-                 bodies=scene_bodies)
+                 bodies=scene_bodies, failures=failures)
 
 
 def _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, notes, syrope_ic=None, syrope_rows=None):

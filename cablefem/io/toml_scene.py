@@ -27,13 +27,14 @@ from cablefem.dynamics.registry import INTEGRATORS
 from cablefem.model.scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
 from cablefem.io import axial_input, validate as v
 from cablefem.io.currents import current_profile_setting
+from cablefem.io.failures import read_toml_failures
 from cablefem.io.moordyn_input import BODY_NO_MOTION_NOTE, NO_MOTION_NOTE, read_moordyn
 from cablefem.io.toml_network import body_motions, end, read_bodies, read_points
 from cablefem.io.waves import read_waves
 from cablefem.model.network import point_position, strings as network_strings
 
 TOP_LEVEL_KEYS = ("name", "environment", "line_types", "lines", "seabed", "friction",
-                  "motion", "solver", "output", "moordyn", "points", "bodies", "waves")
+                  "motion", "solver", "output", "moordyn", "points", "bodies", "waves", "failures")
 SEABED_KINDS = ("horizontal", "plane", "grid", "mesh", "points")
 #: the key that places each kind of seabed (named by the scene-level checks)
 SEABED_KEY = {"horizontal": "depth", "plane": "point", "grid": "file", "mesh": "file", "points": "file"}
@@ -136,9 +137,11 @@ def read_toml_scene(path, data=None):
     else:
         bodies = read_bodies(data["bodies"], folder) if "bodies" in data else {}
         points = read_points(data["points"], bodies) if "points" in data else {}
-        lines = _lines(data["lines"], _line_types(data["line_types"]), points, bodies)
-        if points or bodies:
-            lines = network_strings(lines, points, bodies)
+        written = _lines(data["lines"], _line_types(data["line_types"]), points, bodies)
+        lines = network_strings(written, points, bodies) if points or bodies else written
+    # a failure names a line as [[lines]] wrote it, or as cablefem names a MoorDyn file's lines
+    failures = read_toml_failures(data["failures"], lines, None if base else written) if "failures" in data \
+        else (base.failures if base else ())
     environment = _environment(data, base, folder)
     seabed, contact, simplify = _seabed(data.get("seabed", {}), folder, base)
     kind = data.get("seabed", {}).get("kind")
@@ -160,7 +163,7 @@ def read_toml_scene(path, data=None):
     return Scene(name=name, lines=lines, seabed=seabed, contact=contact, environment=environment,
                  friction=friction, motion=motion, solver=solver, output=output, source=path,
                  notes=notes, moordyn_options=dict(base.moordyn_options) if base else {}, keys=keys,
-                 load_settings=load_settings, points=points, bodies=bodies)
+                 load_settings=load_settings, points=points, bodies=bodies, failures=failures)
 
 
 def _environment(data, base, folder):

@@ -29,6 +29,7 @@ from cablefem.io.vtk import TimeSeriesWriter, polyline_mesh, series_files
 from cablefem.model.network import anchor_path, boundary_path
 from cablefem.runs.network_output import NetworkRows, body_reference, frame_marks
 from cablefem.runs.bending_rows import BendingRows
+from cablefem.runs.failures import Failures
 from cablefem.runs.results import LineSampler, line_fields
 from cablefem.runs.surface import NAME as SURFACE, SurfaceFrames
 from cablefem.statics.scene import run_start
@@ -100,6 +101,7 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
                **({"waves": sea.describe()} if sea is not None else {}),
                **({"current": water.current.describe()} if water is not None and water.current is not None else {})}
     integrators, outputs, status = [], {}, "completed"
+    failures = Failures(scene, dt)
     tracker = _Extremes([line.name for line in scene.lines], NetworkRows(scene) if scene.points else None, sea,
                         BendingRows(scene.lines))
     try:
@@ -122,7 +124,7 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
         outputs["table"] = RowsFile(inside(out_dir, "tensions.csv"),
                                     _columns(scene, tracker.network, sea, tracker.bending))
         outputs["bar"] = _progress(progress, duration)
-        _advance(scene, integrators, groups, outputs, tracker, duration, dt)
+        _advance(scene, integrators, groups, outputs, tracker, duration, dt, failures)
     except KeyboardInterrupt:
         status = "interrupted"
         raise
@@ -130,6 +132,8 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
         status = f"stopped: {error}"
         raise
     finally:
+        if scene.failures:
+            summary["failures"] = failures.summary()
         _finish(summary, status, integrators, outputs, tracker, start, out_dir,
                 reraise=status == "completed")
     return summary
@@ -176,11 +180,13 @@ def step_times(t, stop, dt):
     return np.array(times)
 
 
-def _advance(scene, integrators, groups, outputs, tracker, duration, dt):
+def _advance(scene, integrators, groups, outputs, tracker, duration, dt, failures):
     """March every line to ``duration`` [s], writing a row of tensions.csv per step (a batch per
     output interval) and a VTK frame every ``output.every`` [s]. Ctrl-C and SIGTERM take effect
     between output intervals (``deferred_signals``; a compiled march does not see them sooner
-    anyway), so that the rows and frames always hold every step taken."""
+    anyway), so that the rows and frames always hold every step taken. The steps land on the
+    failures' times; with a failure's tension to watch, fixed steps stop after the first step over
+    it (``_march_to_tension``); where a failure is due a line end lets go (``cablefem.runs.failures``)."""
     solver, frames, table, bar = scene.solver, outputs["frames"], outputs["table"], outputs["bar"]
     surface = outputs.get("surface")
     samplers = [LineSampler(integ.system) for integ in integrators]  # the frames' points, once
@@ -204,24 +210,89 @@ def _advance(scene, integrators, groups, outputs, tracker, duration, dt):
             frame = int(np.floor((t + near) / every)) + 1
         return t
 
+    def write(rows):
+        table.write(tracker.rows(failures.zero(rows)))
+
+    def release(row):
+        """Let go of the ends whose failures are due at ``row``; their lines' groups and samplers anew."""
+        before = list(integrators)
+        for k in failures.release_due(row, scene, integrators):
+            _regroup(groups, before[k], integrators[k])
+            samplers[k] = LineSampler(integrators[k].system)
+
     tracker.bending.measure(integrators[0].t)
-    t = record([(integrators[0].t, _reactions(integrators, groups))])
+    first = [(integrators[0].t, _reactions(integrators, groups))]
+    t = record(first)
+    if scene.failures:
+        release(first[-1])
     while t < duration - near:
         with deferred_signals():
-            stop = min(duration, frame * every)
+            stop = min(duration, frame * every, failures.next_time(t))
             # fixed steps to the next output time, or adaptive ones (``policy.advance``): each group in one call
             times = np.array([stop]) if solver.adaptive else step_times(t, stop, dt)
             if tracker.bending and times.size > 1:  # a bending line's end moments: its state after every step
                 rows = []
                 for each in times:
-                    rows += _march(integrators, groups, np.array([each]), lambda rows: table.write(tracker.rows(rows)))
+                    rows += _march(integrators, groups, np.array([each]), write)
                     tracker.bending.measure(rows[-1][0])
+                    if failures.due(rows[-1]):  # a line end lets go after this step
+                        break
+            elif failures.watching_tension and not solver.adaptive:
+                rows = _march_to_tension(integrators, groups, times, write, failures)
             else:
-                rows = _march(integrators, groups, times, lambda rows: table.write(tracker.rows(rows)))
+                rows = _march(integrators, groups, times, write)
                 tracker.bending.measure(rows[-1][0])
+            rows = failures.zero(rows)
             if bar is not None:
                 bar.update(rows[-1][0] - t)
             t = record(rows)
+            if scene.failures:
+                release(rows[-1])
+
+
+def _march_to_tension(integrators, groups, times, write, failures):
+    """``_march`` to ``times``, stopping after the first step at whose end a failure's tension is
+    exceeded: the steps are marched in one call; where a row before the last is over a threshold, the
+    groups go back to where they were (``Group.restore``) and march again one step at a time to that
+    row, so that an end lets go after the first step over its threshold (the steps taken twice are
+    counted twice). A march that fails is taken again step by step too: an end may let go before."""
+    saved = [group.snapshot() for group in groups]
+    try:
+        rows = _march(integrators, groups, times, lambda rows: None)
+        k = failures.first_due(rows)
+        if k is None or k == len(rows) - 1:
+            return rows
+    except ConvergenceError:  # the intact line failed where it might have let go before: step by step
+        k = len(times) - 1
+    for group, snapshot in zip(groups, saved):
+        group.restore(snapshot)
+        group.marched = None
+        for member in group.members:
+            member.contraction = -1.0  # the kept factors are of a later state
+    rows = []
+    try:
+        for tk in times[:k + 1]:
+            rows += _march(integrators, groups, [tk], write)
+            if failures.due(rows[-1]):
+                break
+    except ConvergenceError:
+        if rows:  # the steps taken before the one that failed
+            write(rows)
+        raise
+    return rows
+
+
+def _regroup(groups, old, new):
+    """The group that stepped integrator ``old`` made again with ``new`` in its place (a line end let
+    go: ``cablefem.runs.failures``), the accelerations of its other members kept (a junction's group
+    starts them at rest)."""
+    for g, group in enumerate(groups):
+        if any(m is old for m in group.members):
+            members = [new if m is old else m for m in group.members]
+            kept = [m.A.copy() for m in members]
+            groups[g] = Group(members, group.junctions)
+            for m, A in zip(members, kept):
+                m.A[...] = A
 
 
 def _finish(summary, status, integrators, outputs, tracker, start, out_dir, reraise):

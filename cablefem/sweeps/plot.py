@@ -34,6 +34,7 @@ KEY_UNITS = {
     ("motion", "ramp"): "s",
     ("solver", "dt"): "s", ("solver", "duration"): "s",
     ("output", "every"): "s",
+    ("failures", "time"): "s", ("failures", "tension"): "N",
     ("waves", "amplitude"): "m", ("waves", "period"): "s", ("waves", "direction"): "deg", ("waves", "phase"): "deg",
     ("waves", "Hs"): "m", ("waves", "Tp"): "s", ("waves", "frequency_band"): "rad/s", ("waves", "time_step"): "s",
     ("waves", "ramp"): "s", ("waves", "depth"): "m",
