@@ -311,7 +311,14 @@ class Integrator:
         return target
 
     def too_small(self, h):
-        """The error of a step of size h whose Newton failed when half of it is below ``min_dt``."""
+        """The error of a step of size h whose Newton failed when half of it is below ``min_dt``, or
+        whose local error stayed above the tolerance down to ``min_dt`` (its Newton converged)."""
+        if self.adaptive and self.last_residual <= self.tolerance:
+            return ConvergenceError(
+                f"{self.name}: the step's local tension error stayed above error_tolerance = "
+                f"{self.error_tolerance:g} at t = {self.t:.6g} s down to dt = {h:.3g} s; try a larger "
+                "error_tolerance, fixed steps (adaptive = false) or a ramp on the motion",
+                residual=self.last_residual, iterations=self.newton_iterations)
         return ConvergenceError(
             f"{self.name}: Newton did not converge at t = {self.t:.6g} s even with "
             f"dt = {h:.3g} s (relative residual {self.last_residual:.3g}, tolerance "
