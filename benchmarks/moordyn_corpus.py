@@ -16,10 +16,10 @@ difference is the larger of its two ends' |T_cablefem - T_MoorDyn| / T_MoorDyn, 
 MoorDyn-C's tension is at least 1 N and 5 % of the line's larger end tension (a free end: MoorDyn-C's
 last segment carries half a lumped node's weight there, cablefem's exact free end nothing); lines
 cablefem joins (``line1+2``, two line ends at a massless point) are left out, and lines whose
-MoorDyn-C tensions are not finite are shown as ``nan`` and left out of the median. The two codes differ in how they reach the equilibrium (MoorDyn-C relaxes
-its dynamics for up to TmaxIC, with CdScaleIC; cablefem solves the statics to its tolerance) and in
-their discretisation (MoorDyn-C's lumped masses at NumSegs; cablefem's elements, order 1 at NumSegs
-by default).
+MoorDyn-C tensions are not finite are shown as ``nan`` and left out of the median.
+The two codes differ in how they reach the equilibrium (MoorDyn-C relaxes its dynamics for up to
+TmaxIC, with CdScaleIC; cablefem solves the statics to its tolerance) and in their discretisation
+(MoorDyn-C's lumped masses at NumSegs; cablefem's elements, order 1 at NumSegs by default).
 
 Measured on MoorDyn v2.7.1's tests/Mooring (the moordyn 2.7 wheel; 2 shared cores):
 
@@ -52,6 +52,7 @@ from pathlib import Path
 import numpy as np
 
 from benchmarks.moordyn_statics import input_files
+from validation.moordyn.peer import silenced_stdout
 
 
 def moordyn_tensions(path):
@@ -59,45 +60,44 @@ def moordyn_tensions(path):
     its coupled objects where the file puts them; run from the file's folder."""
     import moordyn
 
-    saved, devnull = os.dup(1), os.open(os.devnull, os.O_WRONLY)
-    os.dup2(devnull, 1)
+    cwd = os.getcwd()
     try:
-        os.chdir(os.path.dirname(path))
-        system = moordyn.Create(os.path.basename(path))
-        x = []
-        for i in range(1, moordyn.GetNumberBodies(system) + 1):
-            body = moordyn.GetBody(system, i)
-            kind = moordyn.GetBodyType(body)
-            if kind == -1:
-                x += list(moordyn.GetBodyState(body)[0])
-            elif kind == 2:
-                x += list(moordyn.GetBodyState(body)[0][:3])
-        for i in range(1, moordyn.GetNumberRods(system) + 1):
-            rod = moordyn.GetRod(system, i)
-            kind = moordyn.GetRodType(rod)
-            if kind in (-2, -1):
-                n = moordyn.GetRodN(rod)
-                a, b = np.array(moordyn.GetRodNodePos(rod, 0)), np.array(moordyn.GetRodNodePos(rod, n))
-                axis = (b - a) / max(np.linalg.norm(b - a), 1e-12)
-                x += list(a) + (list(axis) if kind == -2 else [])
-        for i in range(1, moordyn.GetNumberPoints(system) + 1):
-            point = moordyn.GetPoint(system, i)
-            if moordyn.GetPointType(point) == -1:
-                x += list(moordyn.GetPointPos(point))
-        if len(x) != moordyn.NCoupledDOF(system):
-            raise RuntimeError(f"{len(x)} coupled positions for {moordyn.NCoupledDOF(system)} degrees of freedom")
-        moordyn.Init(system, x, [0.0] * len(x))
-        moordyn.Step(system, x, [0.0] * len(x), 0.0, 1e-4)  # with TmaxIC 0 its tensions are set by a step
-        tensions = {}
-        for i in range(1, moordyn.GetNumberLines(system) + 1):
-            line = moordyn.GetLine(system, i)
-            n = moordyn.GetLineN(line)
-            tensions[i] = [float(np.linalg.norm(moordyn.GetLineNodeTen(line, k))) for k in (0, n)]
-        moordyn.Close(system)
-        return tensions
+        with silenced_stdout():
+            os.chdir(os.path.dirname(path))
+            system = moordyn.Create(os.path.basename(path))
+            x = []
+            for i in range(1, moordyn.GetNumberBodies(system) + 1):
+                body = moordyn.GetBody(system, i)
+                kind = moordyn.GetBodyType(body)
+                if kind == -1:
+                    x += list(moordyn.GetBodyState(body)[0])
+                elif kind == 2:
+                    x += list(moordyn.GetBodyState(body)[0][:3])
+            for i in range(1, moordyn.GetNumberRods(system) + 1):
+                rod = moordyn.GetRod(system, i)
+                kind = moordyn.GetRodType(rod)
+                if kind in (-2, -1):
+                    n = moordyn.GetRodN(rod)
+                    a, b = np.array(moordyn.GetRodNodePos(rod, 0)), np.array(moordyn.GetRodNodePos(rod, n))
+                    axis = (b - a) / max(np.linalg.norm(b - a), 1e-12)
+                    x += list(a) + (list(axis) if kind == -2 else [])
+            for i in range(1, moordyn.GetNumberPoints(system) + 1):
+                point = moordyn.GetPoint(system, i)
+                if moordyn.GetPointType(point) == -1:
+                    x += list(moordyn.GetPointPos(point))
+            if len(x) != moordyn.NCoupledDOF(system):
+                raise RuntimeError(f"{len(x)} coupled positions for {moordyn.NCoupledDOF(system)} degrees of freedom")
+            moordyn.Init(system, x, [0.0] * len(x))
+            moordyn.Step(system, x, [0.0] * len(x), 0.0, 1e-4)  # with TmaxIC 0 its tensions are set by a step
+            tensions = {}
+            for i in range(1, moordyn.GetNumberLines(system) + 1):
+                line = moordyn.GetLine(system, i)
+                n = moordyn.GetLineN(line)
+                tensions[i] = [float(np.linalg.norm(moordyn.GetLineNodeTen(line, k))) for k in (0, n)]
+            moordyn.Close(system)
     finally:
-        os.dup2(saved, 1)
-        os.close(devnull)
+        os.chdir(cwd)
+    return tensions
 
 
 def cablefem_outcome(path):

@@ -10,6 +10,7 @@ import pytest
 
 from bad_input import BASE_MOORDYN, Case, assert_refused, edit
 from cablefem.io import load_scene
+from validation.moordyn.peer import silenced_stdout
 
 moordyn = pytest.importorskip("moordyn")
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "moordyn")
@@ -18,24 +19,22 @@ DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "moordyn
 def moordyn_kinematics(path, points, times):
     """MoorDyn-C's (U, Ud, zeta) at points (n, 3) at each of ``times`` (stepping its system there), run
     from the file's folder as MoorDyn's own tests run; its output on file descriptor 1 discarded."""
-    saved, devnull, cwd = os.dup(1), os.open(os.devnull, os.O_WRONLY), os.getcwd()
-    os.dup2(devnull, 1)
+    cwd = os.getcwd()
     try:
-        os.chdir(os.path.dirname(path))
-        system = moordyn.Create(os.path.basename(path))
-        n = moordyn.NCoupledDOF(system)
-        moordyn.Init(system, [0.0] * n, [0.0] * n)
-        waves, t, out = moordyn.GetWaves(system), 0.0, []
-        for time in times:
-            if time > t:
-                moordyn.Step(system, [0.0] * n, [0.0] * n, t, time - t)
-                t = time
-            out.append([moordyn.GetWavesKin(waves, *point)[:3] for point in points])
-        moordyn.Close(system)
+        with silenced_stdout():
+            os.chdir(os.path.dirname(path))
+            system = moordyn.Create(os.path.basename(path))
+            n = moordyn.NCoupledDOF(system)
+            moordyn.Init(system, [0.0] * n, [0.0] * n)
+            waves, t, out = moordyn.GetWaves(system), 0.0, []
+            for time in times:
+                if time > t:
+                    moordyn.Step(system, [0.0] * n, [0.0] * n, t, time - t)
+                    t = time
+                out.append([moordyn.GetWavesKin(waves, *point)[:3] for point in points])
+            moordyn.Close(system)
     finally:
         os.chdir(cwd)
-        os.dup2(saved, 1)
-        os.close(devnull)
     return out
 
 
