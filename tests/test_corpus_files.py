@@ -78,7 +78,7 @@ MOORDYN = [
              "---------------------- POINTS"}),
     moordyn("unused-point", "line 14: POINTS.4: no line uses this point",
             {"-14.0    0      0        0     0\n": "-14.0    0      0        0     0\n4 Free 0 0 -10 0 0 0 0\n"}),
-    moordyn("rods", "line 14: RODS: RODS (rigid rods, and lines attached to rod ends R1A, R1B) is not supported",
+    moordyn("rods", "line 17: RODS: expected 11 columns (ID RodType Attachment Xa Ya Za Xb Yb Zb NumSegs Outputs)",
             {"---------------------- LINES": "---------------------- RODS "
             "------\nID RodType\n(#) (name)\n1 rod 0 0 0 1 1 1 10 -\n---------------------- LINES"}),
     moordyn("seafloor-missing", "line 21: OPTIONS.SeafloorFile: file not found",

@@ -178,10 +178,15 @@ def test_a_free_body_reads_solves_in_statics_and_is_refused_only_in_a_run(tmp_pa
     np.testing.assert_allclose(solved["force"], [0.0, 0.0, -net_buoyancy], rtol=0, atol=1e-6 * net_buoyancy)
 
 
-def test_rods_and_v1_line_types_of_a_moordyn_file_refused_with_what_to_do():
-    """complex_system.txt has RODS: refused with what to do instead (REFUSED's one list)."""
-    with pytest.raises(InputError, match="ROD TYPES .* is not supported: model a rod as a short stiff line"):
-        load_scene(data("complex_system.txt"))
+def test_zero_length_rods_of_a_moordyn_file_are_massless_points_joining_their_lines():
+    """complex_system.txt's four free rods have NumSegs 0: MoorDyn-C gives a zero-length rod no mass
+    and no volume, so each is a massless free point, and the lines through them are strings (the
+    rods' ends R1A and R1B are the one point ``rod1``)."""
+    scene = load_scene(data("complex_system.txt"))
+    assert [line.name for line in scene.lines] == ["line1", "line2+3", "line4+5+6+7"]
+    rods = {name: point for name, point in scene.points.items() if name.startswith("rod")}
+    assert sorted(rods) == ["rod1", "rod2", "rod3", "rod4"]
+    assert all(p.kind == "free" and p.mass == 0.0 and p.volume == 0.0 and p.body is None for p in rods.values())
 
 
 def test_v1_line_types_are_read_by_position_as_moordyn_c_reads_them(tmp_path):

@@ -326,8 +326,8 @@ def test_base_of_the_bad_toml_table_is_valid(tmp_path):
 
 BAD_MOORDYN = [
     ({"---------------------- LINES": "---------------------- RODS ------\nID RodType\n(#) (name)\n"
-      "1 rod 0 0 0 1 1 1 10 -\n---------------------- LINES"}, "line 14: RODS",
-     "is not supported: model a rod as a short stiff line"),
+      "1 rod 0 0 0 1 1 1 10 -\n---------------------- LINES"}, "line 17: RODS",
+     "expected 11 columns"),
     ({"---------------------- POINTS": "---------------------- BODIES ------\n1 free 0 0 0 0 0 0 1000 0 0 0 0 0"
       "\n---------------------- POINTS"}, "line 9: BODIES.1", "three moments of inertia > 0"),
     ({"---------------------- POINTS": "---------------------- BODIES ------\n1 free 0 0 0 0 0 0 1000 0 1e6 0 0 0"
@@ -352,7 +352,7 @@ BAD_MOORDYN = [
     ({"1     chain       1": "1     chian       1"}, "line 17: LINES.1.LineType", "unknown line type 'chian'"),
     ({"1     chain       1        2": "1     chain       1        7"}, "line 17: LINES.1.AttachB", "no point '7'"),
     ({"1     chain       1        2": "1     chain       R1A      2"}, "line 17: LINES.1.AttachA",
-     "attached to rod end 'R1A' is not supported"),
+     "no rod 1 in RODS for 'R1A' (none defined)"),
     ({"1     chain       1        2": "1     chain       P1       Q2"}, "line 17: LINES.1.AttachB", "no point 'Q2'"),
     ({"3      Coupled": "3      Floating"}, "line 13: POINTS.3.Attachment", "unknown attachment 'Floating'"),
     ({"3      Coupled": "3      Body1  "}, "line 13: POINTS.3.Attachment", "no body 1 in BODIES (none defined)"),

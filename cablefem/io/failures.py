@@ -91,7 +91,7 @@ def read_moordyn_failures(rows, raw_lines, points, strings, at):
                              key=key)
         point, listed = fields[1], [item for item in fields[2].split(",") if item]
         if point.upper().startswith("R"):
-            refuse("RODS", at(number, f"FAILURE.{fields[0]}.Point"), f"a failure at rod end '{point}'")
+            refuse("rod end failure", at(number, f"FAILURE.{fields[0]}.Point"), f"a failure at rod end '{point}'")
         if len(listed) != 1:
             raise InputError(f"lines {fields[2]} fail together at point {point}: cablefem lets go of one line "
                              "end per failure (MoorDyn-F leaves several lines joined by a new free point); give "

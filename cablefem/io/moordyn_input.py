@@ -1,9 +1,9 @@
 """MoorDyn v2 input files (MoorDyn-C 2.x layout) read into a cablefem Scene.
 
 Sections read: LINE TYPES (v2 columns, or the v1 header read by position as MoorDyn-C reads it),
-BODIES, POINTS, LINES, OPTIONS (value first: ``850 WtrDpth``) and OUTPUTS (channel names, up to
+ROD TYPES, BODIES, RODS (``moordyn_rods``), POINTS, LINES, OPTIONS (value first: ``850 WtrDpth``) and OUTPUTS (channel names, up to
 ``END``, recorded and ignored). Rows before the first recognised ``---`` header are the title
-(``moordyn_sections`` cuts the file). What cablefem does not read (RODS, WaveKin 4 to 6, Currents 3 and
+(``moordyn_sections`` cuts the file). What cablefem does not read (WaveKin 4 to 6, Currents 3 and
 4, ...) is refused with what to do instead, from the one list ``moordyn_sections.REFUSED``. Numbers
 and IDs are ASCII (``str.isdigit`` and ``float`` would take other scripts' digits) and within the
 sane limits of ``validate.LIMITS``.
@@ -56,6 +56,7 @@ from cablefem.io.currents import GRID_FILES, MOORDYN_FILE, read_current_grid, re
 from cablefem.io.moordyn_waves import DT_WAVE, read_wave_kin
 from cablefem.waves import Sea
 from cablefem.io.moordyn_network import line_end, read_bodies, read_points
+from cablefem.io.moordyn_rods import clamp_directions, read_rods, rod_end, rod_network
 from cablefem.io.failures import read_moordyn_failures
 from cablefem.io.moordyn_sections import (TABLE_COLUMNS, at as _at, parse_sections, refuse, split_sections,
     value as _value)
@@ -114,7 +115,7 @@ def _line_types(rows, v1, notes):
     return types
 
 
-def _lines(rows, types, points, v1=(), notes=None):
+def _lines(rows, types, points, v1=(), notes=None, rods=None):
     """Raw lines in file order: dicts with id, type, ends (point names), length [m], segments, row.
     ``v1``: the rows of a v1 header (Line LineType UnstrLen NumSegs NodeAnch NodeFair Flags): its
     columns are read as it names them."""
@@ -132,7 +133,8 @@ def _lines(rows, types, points, v1=(), notes=None):
             raise InputError(f"unknown line type '{fields[1]}'{v.suggest(fields[1], types)}; "
                              f"defined in LINE TYPES: {', '.join(types) or 'none'}",
                              key=_at(number, f"{key}.LineType"))
-        ends = [line_end(token, points, _at(number, f"{key}.{column}"))
+        ends = [rod_end(token, rods or {}, _at(number, f"{key}.{column}"))
+                or line_end(token, points, _at(number, f"{key}.{column}"))
                 for column, token in zip(("AttachA", "AttachB"), fields[2:4])]
         length = _value(fields[4], number, f"{key}.UnstrLen", v.limited(v.positive, "length"))
         segments = v.limited(v.whole, "nodes")(int(fields[5]) if _WHOLE.fullmatch(fields[5]) else fields[5],
@@ -280,19 +282,21 @@ def _build(path, text, simplify=True, waves=True):
         raise InputError("no LINE TYPES or LINES section: not a MoorDyn v2 input file")
     raw_types = _line_types(found["LINE TYPES"], found["v1"].get("LINE TYPES", ()), notes)
     bodies = read_bodies(found["BODIES"], notes)
+    rods = read_rods(found["ROD TYPES"], found["RODS"], bodies, notes)
     points = read_points(found["POINTS"], bodies, notes)
-    raw_lines = _lines(found["LINES"], raw_types, points, found["v1"].get("LINES", ()), notes)
+    raw_lines = _lines(found["LINES"], raw_types, points, found["v1"].get("LINES", ()), notes, rods)
+    rod_points, rod_bodies = rod_network(rods, bodies, {name for raw in raw_lines for name in raw["ends"]}, notes)
     options, raw_options, seafloor, options_rows = _options(found["OPTIONS"], notes)
     if found["OUTPUTS"]:
         notes.append(f"OUTPUTS ignored: {' '.join(f for _, fields in found['OUTPUTS'] for f in fields)}")
     get = lambda name: options.get(name, OPTION_DEFAULTS.get(name))  # noqa: E731
     profile, current_grid = _currents(path, options, options_rows, notes)
     environment = Environment(water_density=get("wtrdnsty"), gravity=get("g"), current_profile=profile)
-    scene_points = {point.name: point for _, point in points.values()}
-    scene_bodies = {body.name: body for _, body in bodies.values()}
+    scene_points = {point.name: point for _, point in [*points.values(), *rod_points.values()]}
+    scene_bodies = {**{body.name: body for _, body in bodies.values()}, **rod_bodies}
     syrope_ic, syrope_rows = _syrope_ic(found["SYROPE IC"], raw_lines, raw_types)
     lines, keys = _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, notes, syrope_ic,
-                           syrope_rows)
+                           syrope_rows, rod_points, rods)
     failures = read_moordyn_failures(found["FAILURE"], raw_lines, points, lines, _at)
     if seafloor is not None:
         keys["seabed"] = (path, _at(seafloor[1], "OPTIONS.SeafloorFile"))
@@ -327,14 +331,16 @@ def _build(path, text, simplify=True, waves=True):
                  bodies=scene_bodies, failures=failures)
 
 
-def _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, notes, syrope_ic=None, syrope_rows=None):
+def _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, notes, syrope_ic=None, syrope_rows=None,
+             rod_points=None, rods=None):
     """The strings of the file's lines (``network.strings``), named ``line1+2`` after their MoorDyn
-    lines, and where their scene keys stand in the file: (lines, keys)."""
-    rows = {point.name: (number, pid) for pid, (number, point) in points.items()}
+    lines, and where their scene keys stand in the file: (lines, keys). ``rod_points``: the points of
+    rod ends (``moordyn_rods.rod_network``), ``rods`` the file's rods (``moordyn_rods.read_rods``)."""
+    rows = {point.name: (number, f"POINTS.{pid}") for pid, (number, point) in points.items()}
     for name, (number, pid) in rows.items():
         if not any(name in raw["ends"] for raw in raw_lines):
-            raise InputError("no line uses this point: remove it, or attach a line to it",
-                             key=_at(number, f"POINTS.{pid}"))
+            raise InputError("no line uses this point: remove it, or attach a line to it", key=_at(number, pid))
+    rows.update({name: (number, f"RODS.{name[3:].rstrip('AB')}") for name, (number, _) in (rod_points or {}).items()})
     built, parts = {}, []
     for raw in raw_lines:
         line_type = _line_type(raw, raw_types, built, os.path.dirname(path), notes)
@@ -350,12 +356,16 @@ def _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, not
             raise InputError(error.reason, key=_at(where, f"{section}.{raw['id']}")) from None
         a, b = (point_position(scene_points[name], scene_bodies) for name in raw["ends"])
         element = "hermite" if segment.type.EI > 0 else "lagrange"  # bending needs C1 elements
-        parts.append(Line(raw["id"], a, b, [segment], ends=tuple(raw["ends"]), element=element))
+        tangents = (None, None)
+        if element == "hermite" and rods:  # MoorDyn-C clamps a line that bends to a fixed rod's axis
+            leaving = [clamp_directions(rods, name) for name in raw["ends"]]
+            tangents = (leaving[0], None if leaving[1] is None else -leaving[1])
+        parts.append(Line(raw["id"], a, b, [segment], ends=tuple(raw["ends"]), element=element, tangents=tangents))
 
     def where(key):  # a key of network.strings' errors, as it stands in the file
         if key.startswith("points."):
             number, pid = rows[key[len("points."):]]
-            return _at(number, f"POINTS.{pid}")
+            return _at(number, pid)
         raw = raw_lines[int(re.match(r"lines\[(\d+)\]", key).group(1))]
         return _at(raw["row"], f"LINES.{raw['id']}")
 
@@ -369,7 +379,7 @@ def _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, not
         index = len(lines) - 1
         keys.update({f"lines[{index}]": (path, key), f"lines[{index}].name": (path, key)})
         for end, name in zip(("anchor", "fairlead"), line.ends):
-            keys[f"lines[{index}].{end}"] = (path, _at(rows[name][0], f"POINTS.{rows[name][1]}"))
+            keys[f"lines[{index}].{end}"] = (path, _at(rows[name][0], rows[name][1]))
         for j, raw in enumerate(chain):
             keys[f"lines[{index}].segments[{j}].elements"] = (path, _at(raw["row"], f"LINES.{raw['id']}.NumSegs"))
         if len(chain) > 1:

@@ -11,7 +11,7 @@ as MoorDyn-C reads them (``MoorDyn2.cpp``: ``readBody``, the POINTS rows, the LI
   N, X Y Z in its frame, relative to its reference point). FX FY FZ: a steady external force [N] on a
   free point or a point of a free body (MoorDyn-C's ``pointF``); on a point whose motion is given it
   changes nothing and is noted.
-- Line ends: a point number, optionally after P/Point/C/Con (``P3``); rod ends (R1A) are refused.
+- Line ends: a point number, optionally after P/Point/C/Con (``P3``); rod ends (R1A): ``moordyn_rods``.
 
 Names: point ID 3 is ``point3``, body 1 ``body1`` in ``Scene.points`` and ``Scene.bodies``.
 """
@@ -149,8 +149,6 @@ def line_end(token, points, key):
     """The point name a LINES AttachA/AttachB token names (``3``, ``P3``, ``Point3``, ``C3``)."""
     match = _WORD_NUMBER.fullmatch(token)
     word, digits, rest = match.groups() if match else ("", "", "")
-    if match and word.upper() in ("R", "ROD") and digits:
-        refuse("RODS", key, f"attached to rod end '{token}'")
     if not match or rest or not digits or word.upper() not in POINT_PREFIXES or int(digits) not in points:
         raise InputError(f"no point '{token}' in POINTS", key=key)
     return point_name(int(digits))

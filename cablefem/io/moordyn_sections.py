@@ -28,6 +28,8 @@ TABLE_COLUMNS = {
     "BODIES": ("ID", "Attachment", "X0", "Y0", "Z0", "r0", "p0", "y0", "Mass", "CG", "I", "Volume", "CdA", "Ca"),
     "POINTS": ("ID", "Attachment", "X", "Y", "Z", "M", "V", "CdA", "CA"),
     "LINES": ("ID", "LineType", "AttachA", "AttachB", "UnstrLen", "NumSegs"),
+    "ROD TYPES": ("Name", "Diam", "Mass/m", "Cd", "Ca", "CdEnd", "CaEnd"),
+    "RODS": ("ID", "RodType", "Attachment", "Xa", "Ya", "Za", "Xb", "Yb", "Zb", "NumSegs", "Outputs"),
 }
 #: column names of the MoorDyn v1 LINE TYPES header (LineType Diam MassDenInAir EA BA/-zeta EI Can Cat
 #: Cdn Cdt): MoorDyn-C reads that table by position (``readLineProps``: entries 6-9 are Cdn, Can,
@@ -41,10 +43,8 @@ V1_COLUMNS = {"LINE TYPES": V1_LINE_TYPE_COLUMNS, "LINES": V1_LINE_COLUMNS}
 #: What cablefem refuses in a MoorDyn file: construct -> (what it is, what to do instead). The one
 #: list; docs/scene.md ("What stays refused") has the same table.
 REFUSED = {
-    "RODS": ("RODS (rigid rods, and lines attached to rod ends R1A, R1B)",
-             "model a rod as a short stiff line between two points, or fix its line ends to a body (BodyN points)"),
-    "ROD TYPES": ("ROD TYPES (properties of RODS)",
-                  "model a rod as a short stiff line between two points, or fix its line ends to a body"),
+    "rod end failure": ("a FAILURE at a rod end (RODS' ends R1A, R1B: MoorDyn-F's failures release points)",
+                        "put a free point between the line and the rod end and let the line fail at that point"),
     "WaveKin": ("wave kinematics other than WaveKin 0, 1, 2, 3 and 7 (4 to 6: not implemented in MoorDyn-C "
                 "either)",
                 "give the waves as [waves] in a TOML that wraps the file, or write them as wave_frequencies.txt "
@@ -116,17 +116,17 @@ def _table_rows(section, rows, v1):
 
 
 def parse_sections(sections):
-    """Raw tables of a split file by section (LINE TYPES, BODIES, POINTS, LINES: rows of fields;
+    """Raw tables of a split file by section (LINE TYPES, ROD TYPES, BODIES, RODS, POINTS, LINES: rows of fields;
     OPTIONS, OUTPUTS, SYROPE IC, FAILURE: rows) and "v1": {section: the rows of its v1 headers} (LINE TYPES, LINES)."""
     found = {"LINE TYPES": [], "BODIES": [], "POINTS": [], "LINES": [], "OPTIONS": [], "OUTPUTS": [], "v1": {},
-             "SYROPE IC": [], "FAILURE": []}
+             "SYROPE IC": [], "FAILURE": [], "ROD TYPES": [], "RODS": []}
     recognised = False
     for name, title, number, rows in sections:
         if name is None:
             data = [r for r in rows if sum(is_number(f) for f in r[1]) >= 2]
             if recognised and data:
-                raise InputError("unrecognised section (cablefem reads LINE TYPES, BODIES, POINTS, LINES, "
-                                 "OPTIONS, OUTPUTS)", key=at(number, title))
+                raise InputError("unrecognised section (cablefem reads LINE TYPES, ROD TYPES, BODIES, RODS, POINTS, "
+                                 "LINES, OPTIONS, OUTPUTS)", key=at(number, title))
             continue
         recognised = True
         if name in TABLE_COLUMNS:

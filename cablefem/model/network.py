@@ -89,7 +89,9 @@ class Body:
     reference point's z = 0; MoorPy's rM may stand for cb: buoyancy there gives the metacentric
     restoring moment), the ``waterplane_area`` [m^2] whose heave restoring force is
     -rho g A_wp z (MoorPy's AWP), and the steady external ``force`` (3,) [N] and ``moment`` (3,)
-    [N m, about the reference point] of an offset study."""
+    [N m, about the reference point] of an offset study. ``rod``: the ``cablefem.model.rod.Rod`` that
+    a free or pinned rod's body is (its own loads in place of mass, volume and waterplane:
+    ``cablefem.model.rod.rod_body``); ``rods``: the rods fixed on the body, ends in its frame."""
 
     name: str
     kind: str
@@ -104,6 +106,8 @@ class Body:
     force: np.ndarray = field(default_factory=lambda: np.zeros(3))
     moment: np.ndarray = field(default_factory=lambda: np.zeros(3))
     motion: object = None
+    rod: object = None
+    rods: tuple = ()
 
     def __post_init__(self):
         key = f"bodies.{self.name}"

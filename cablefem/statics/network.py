@@ -35,6 +35,7 @@ from cablefem.statics.continuation import axial_continuation
 from cablefem.statics.hang import free_end
 from cablefem.statics.network_relax import NetworkPseudoTransient
 from cablefem.statics.newton import Halving, iterate, newton
+from cablefem.statics import rods
 from cablefem.statics.solve import solve_static
 
 #: a string's Newton from its last equilibrium (``Network.solve_strings``) may take this many times
@@ -63,6 +64,7 @@ class _Node:
     offset: int
     local: np.ndarray | None
     loads: PointLoads | None  # the point's own weight and buoyancy (None: massless, no volume)
+    rod: object = None  # the body of a free or pinned rod the point is on (``cablefem.statics.rods``)
 
 
 @dataclass
@@ -134,7 +136,8 @@ class Network:
         loads = None
         if point.mass > 0.0 or point.volume > 0.0 or np.any(point.force):
             loads = PointLoads([0], [point.joint], env.water_density, env.gravity)
-        node = _Node(name, self.offsets[owner], None if point.body is None else point.position, loads)
+        rod = self.scene.bodies[point.body] if point.body is not None and self.scene.bodies[point.body].rod else None
+        node = _Node(name, self.offsets[owner], None if point.body is None else point.position, loads, rod)
         self.nodes[name] = node
         return node
 
@@ -146,7 +149,8 @@ class Network:
             q[self.offsets[name]:self.offsets[name] + 3] = self.scene.points[name].position
         for name in self.bodies:
             body = self.scene.bodies[name]
-            q[self.offsets[name]:self.offsets[name] + 6] = np.concatenate([body.position, body.rotation])
+            q[self.offsets[name]:self.offsets[name] + 6] = rods.start(body) if body.rod else np.concatenate(
+                [body.position, body.rotation])
         return q
 
     def place(self, q):
@@ -158,6 +162,9 @@ class Network:
             T[:, o:o + 3] = np.eye(3)
             if node.local is None:
                 out[name] = (q[o:o + 3].copy(), T)
+            elif node.rod is not None:
+                x, T[:, o:o + 6] = rods.place(node.rod, node.local, q[o:o + 6])
+                out[name] = (x, T)
             else:
                 R, dR = rotation_derivatives(q[o + 3:o + 6])
                 T[:, o + 3:o + 6] = dR.transpose(0, 2, 1) @ node.local
@@ -274,7 +281,10 @@ class Network:
                 arm = x - q[o:o + 3]
                 r[o + 3:o + 6] += np.cross(arm, F)
                 J[o + 3:o + 6] += _cross(arm) @ dF
-                J[o + 3:o + 6, o + 3:o + 6] -= _cross(F) @ T[:, o + 3:o + 6]
+                if node.rod is None:
+                    J[o + 3:o + 6, o + 3:o + 6] -= _cross(F) @ T[:, o + 3:o + 6]
+                else:  # the arm x - A moves with both ends
+                    J[o + 3:o + 6, o:o + 6] -= _cross(F) @ (T[:, o:o + 6] - np.eye(3, 6))
         for name in self.bodies:
             self._body_terms(name, q, r, J)
         return r, J
@@ -283,6 +293,18 @@ class Network:
         """A free body's own weight, buoyancy, waterplane and external load into r and J."""
         body, o = self.scene.bodies[name], self.offsets[name]
         g = self.scene.environment.gravity
+        rho = self.scene.environment.water_density
+        if body.rod is not None:  # a free or pinned rod: its own loads (cablefem.statics.rods)
+            rows, jacobian = rods.rod_terms(body, q[o:o + 6], rho, g, self.scale())
+            r[o:o + 6] += rows
+            J[o:o + 6, o:o + 6] += jacobian
+            if body.rod.pinned:
+                rods.pin(body, q, r, J, o, self.scale())
+            return
+        if body.rods:
+            rows, jacobian = rods.carried_terms(body, q[o:o + 6], rho, g)
+            r[o:o + 6] += rows
+            J[o:o + 6, o:o + 6] += jacobian
         R, dR = rotation_derivatives(q[o + 3:o + 6])
         r[o + 2] += -body.mass * g + self.rho_g * body.volume - self.rho_g * body.waterplane_area * q[o + 2]
         J[o + 2, o + 2] -= self.rho_g * body.waterplane_area
@@ -299,6 +321,8 @@ class Network:
         total += sum(abs(p.mass * self.scene.environment.gravity) + self.rho_g * p.volume
                      for p in self.scene.points.values())
         total += sum(float(np.linalg.norm(self.scene.bodies[b].force)) for b in self.bodies)
+        total += sum(self.scene.bodies[b].mass * self.scene.environment.gravity for b in self.bodies
+                     if self.scene.bodies[b].rod is not None)
         return total or 1.0
 
     def length(self):
@@ -353,6 +377,7 @@ def solve_network(scene, build, tolerance=1e-8, max_iterations=50):
             residual=norm, iterations=iterations)
     points = {name: places[name][0] for name in net.junctions}
     poses = {name: q[net.offsets[name]:net.offsets[name] + 6].copy() for name in net.bodies}
+    poses.update({name: rods.pose(scene.bodies[name], poses[name]) for name in net.bodies if scene.bodies[name].rod})
     return NetworkStatics(net.systems, states, points, poses, iterations, norm, history,
                           time.perf_counter() - start, net.solves, net.string_iterations, outer)
 

@@ -78,4 +78,6 @@ def pseudo_masses(net):
         share = sum(value for point, value in strings.items() if net.scene.points[point].body == name)
         D[o:o + 3] = body.mass + share
         D[o + 3:o + 6] = np.where(body.inertia > 0.0, body.inertia, D[o] * net.length() ** 2)
+        if body.rod is not None:  # a rod's unknowns are its two ends
+            D[o + 3:o + 6] = D[o]
     return np.where(D > 0.0, D, 1.0)

@@ -15,6 +15,7 @@ from dataclasses import replace
 
 from cablefem.fem.system import build_system
 from cablefem.model.network import anchor_path, boundary_path, check_no_coupling, coupling
+from cablefem.model.rod import check_rods_in_run
 
 
 #: ``cablefem static`` solves a single line of at most this many nodes on the numpy path: loading
@@ -122,6 +123,7 @@ def start_states(scene, t0=0.0, systems=None):
     (``static_lines``; a network's junctions solved with their strings): (states, Newton
     iterations). ``systems``: the lines' dynamic systems, whose FEM the static ones share and which
     start from the statics' history of the points."""
+    check_rods_in_run(scene)
     check_no_coupling(scene)
     statics, results, iterations, _ = static_lines(scene, t0, systems)
     if systems is not None:
@@ -146,6 +148,7 @@ def run_start(scene, t0=0.0):
     unknowns in a run, held in the network's statics)."""
     from cablefem.model.network import dynamic_lines
 
+    check_rods_in_run(scene)
     check_no_coupling(scene)
     statics, results, iterations, network = static_lines(scene, t0)
     systems = []

@@ -1,0 +1,75 @@
+"""A rigid rod's own loads (MoorDyn's RODS; ``cablefem.model.rod``): weight, buoyancy with partial
+submergence, and the transverse drag along it and the axial drag at its ends.
+
+MoorDyn-C's ``Rod::doRHS`` (Rod.cpp) lumps these on the rod's NumSegs + 1 nodes: the dry weight
+m_i g, the buoyancy of the submerged fraction VOF of each node's volume (its side pressure) plus the
+pressure rho g A |z| on each submerged end, the drag 1/2 rho Cd d dL |v_p| v_p of the flow across
+the rod and 1/2 rho A CdEnd |v_q| v_q along it at each submerged end. The side and end pressures of
+a submerged part sum to rho g times its volume, upward at its centroid (Archimedes); here they are
+integrated along the axis instead of lumped: the submerged part of the rod is the interval of its
+axis below the still water surface z = 0, its buoyancy rho g A L f at the interval's midpoint. What
+is left out: the waterplane's and the ends' moments of area (terms in d^4 of Rod.cpp's ``Mext``,
+small against the buoyancy's moment in d^2 L^2 for a slender rod) and seabed contact of a rod.
+
+A rod is a rigid body: these are its resultant force and moment about its end A, the loads a
+network's rigid-body balance takes (``cablefem.statics.rods``), not loads per unit length of a
+finite element line; the load catalog's lines never see a rod.
+"""
+
+import numpy as np
+
+
+def submerged_interval(z_a, z_b):
+    """(s0, s1): the part 0 <= s0 <= s <= s1 <= 1 of the axis r(s) = A + s (B - A) below z = 0,
+    for end heights ``z_a``, ``z_b`` [m]; (0, 0) if the rod is out of the water."""
+    if z_a <= 0.0 and z_b <= 0.0:
+        return 0.0, 1.0
+    if z_a >= 0.0 and z_b >= 0.0:
+        return 0.0, 0.0
+    crossing = z_a / (z_a - z_b)  # where z(s) = 0
+    return (0.0, crossing) if z_a < 0.0 else (crossing, 1.0)
+
+
+def static_loads(end_a, end_b, rod, water_density, gravity):
+    """The weight and buoyancy of ``rod`` with its ends at ``end_a``, ``end_b`` (3,) [m]: its
+    resultant force (3,) [N] and moment (3,) [N m] about end A. The weight m L g acts at the middle
+    of the axis, the buoyancy rho g A L (s1 - s0) at the middle of its submerged part
+    (``submerged_interval``)."""
+    a, b = np.asarray(end_a, dtype=float), np.asarray(end_b, dtype=float)
+    axis = b - a
+    L = rod.length
+    weight = np.array([0.0, 0.0, -rod.mass * gravity])
+    s0, s1 = submerged_interval(a[2], b[2])
+    buoyancy = np.array([0.0, 0.0, water_density * gravity * rod.area * L * (s1 - s0)])
+    moment = np.cross(0.5 * axis, weight) + np.cross(0.5 * (s0 + s1) * axis, buoyancy)
+    return weight + buoyancy, moment
+
+
+def drag(end_a, end_b, velocity_a, velocity_b, rod, water_density, current=np.zeros(3), points=16):
+    """The drag of still water or a uniform ``current`` (3,) [m/s] on ``rod`` moving with its end
+    velocities ``velocity_a``, ``velocity_b`` (3,) [m/s] (a rigid motion: linear along the axis):
+    the transverse drag 1/2 rho Cd d |v_p| v_p per unit length integrated along the submerged axis
+    (``points`` Gauss points) and the axial drag 1/2 rho A CdEnd |v_q| v_q at each submerged end
+    (Rod.cpp's Dp and Dq); force (3,) [N] and moment (3,) [N m] about end A."""
+    a, b = np.asarray(end_a, dtype=float), np.asarray(end_b, dtype=float)
+    va, vb = np.asarray(velocity_a, dtype=float), np.asarray(velocity_b, dtype=float)
+    axis = b - a
+    L = float(np.linalg.norm(axis))
+    q = axis / L
+    t = rod.type
+    s0, s1 = submerged_interval(a[2], b[2])
+    nodes, weights = np.polynomial.legendre.leggauss(points)
+    s = s0 + 0.5 * (s1 - s0) * (nodes + 1.0)
+    w = 0.5 * (s1 - s0) * L * weights
+    relative = current - (va + s[:, None] * (vb - va))
+    across = relative - np.outer(relative @ q, q)
+    per_length = 0.5 * water_density * t.Cd * t.diameter * np.linalg.norm(across, axis=1)[:, None] * across
+    force = (w[:, None] * per_length).sum(axis=0)
+    moment = (w[:, None] * np.cross(s[:, None] * axis, per_length)).sum(axis=0)
+    for at, v, arm in ((a, va, 0.0), (b, vb, 1.0)):
+        if at[2] < 0.0:
+            along = ((current - v) @ q) * q
+            end = 0.5 * water_density * rod.area * t.CdEnd * np.linalg.norm(along) * along
+            force += end
+            moment += np.cross(arm * axis, end)
+    return force, moment
