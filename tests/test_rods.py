@@ -4,6 +4,7 @@ and bodies, a rod's drag against its closed form, and bad input in one line."""
 
 import json
 import math
+import os
 
 import numpy as np
 import pytest
@@ -16,6 +17,7 @@ from cablefem.model.rod import Rod, RodType
 from cablefem.statics.scene import run_start
 
 RHO, G = 1025.0, 9.80665
+HERE = os.path.dirname(__file__)
 #: a rope twice as dense as the water
 ROPE_D = 0.05
 ROPE_EA = 1.0e7
@@ -60,7 +62,7 @@ ID   LineType   AttachA  AttachB  UnstrLen  NumSegs  LineOutputs
 
 def static_json(path, tmp_path, capsys):
     """``cablefem static FILE --json``: its JSON."""
-    out = tmp_path / (path.stem + ".json")
+    out = tmp_path / (os.path.basename(str(path)).rsplit(".", 1)[0] + ".json")
     assert main(["static", str(path), "--json", str(out)]) == 0, capsys.readouterr()
     capsys.readouterr()
     return json.loads(out.read_text())
@@ -126,6 +128,26 @@ def test_a_pinned_rod_turns_about_its_pin_to_its_closed_form(tmp_path, capsys):
     np.testing.assert_allclose(solved["lines"][0]["fairlead_tension"], T, rtol=1e-6)
     np.testing.assert_allclose(solved["points"]["rod1B"]["position"], B_, atol=1e-6 * L)
     np.testing.assert_allclose(solved["bodies"]["rod1"]["position"], A, atol=1e-9 * L)
+
+
+def test_moordyns_rod_hanging_between_two_ropes_sits_where_the_elastic_catenary_puts_it(tmp_path, capsys):
+    """MoorDyn's RodHanging.txt: a free rod (20 m, heavier than water) hanging from two 450 m ropes
+    from Fixed points 900 m apart. Symmetric, so each rope spans 440 m and carries half the rod's
+    weight in water at its lower end: MoorPy's elastic catenary of a rope over the solved drop gives
+    that vertical force (3 %: it is 3e-3 of the tension, which 45 P1 elements resolve to ~1e-4) and
+    both end tensions (1e-3). MoorDyn-C's own start (TmaxIC 0) is no equilibrium: benchmarks/
+    moordyn_corpus.py."""
+    catenary = pytest.importorskip("moorpy.Catenary").catenary
+    solved = static_json(os.path.join(HERE, "data", "moordyn", "RodHanging.txt"), tmp_path, capsys)
+    a = np.array(solved["bodies"]["rod1"]["position"])
+    np.testing.assert_allclose(a[:2], [-10.0, 0.0], atol=1e-6)
+    rope = (77.7066 - RHO * math.pi / 4.0 * 0.09 ** 2) * G
+    rod = (77.7066 - RHO * math.pi / 4.0 * 0.25 ** 2) * G * 20.0
+    low_h, low_v, high_h, high_v, _ = catenary(440.0, -a[2], 450.0, 384.243e6, rope, CB=0)
+    np.testing.assert_allclose(low_v, rod / 2.0, rtol=0.03)
+    for line in solved["lines"]:
+        np.testing.assert_allclose(line["fairlead_tension"], math.hypot(low_h, low_v), rtol=1e-3)
+        np.testing.assert_allclose(line["anchor_tension"], math.hypot(high_h, high_v), rtol=1e-3)
 
 
 @pytest.mark.parametrize("rod, point, second, length", [
@@ -230,3 +252,15 @@ def test_bad_rod_input_is_one_line_naming_the_file_the_row_and_the_reason(rod, l
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and str(path) in err[0] and key in err[0] and reason in err[0], err
     assert not out.exists()
+
+
+def test_a_free_rod_that_cannot_float_is_refused_with_its_weight_and_buoyancy(tmp_path, capsys):
+    """A free rod heavier than the water it displaces (500 kg/m against 201 kg/m), held only by a
+    line to an anchor on the seabed: nothing can hold it up (the line lifts at most its own
+    buoyancy, none). Exit 2, one line naming the file, its RODS row and its weight."""
+    path = moordyn_file(tmp_path, "lead 0.5 500 1 1 0.5 0.5", "1 lead Free 0 0 -10 0 0 -5 4 -",
+                        "1 Fixed 0 0 -20 0 0 0 0", "1 rope 1 R1A 10 20 -")
+    assert main(["static", str(path)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and str(path) in err[0] and "line 14: RODS.1" in err[0], err
+    assert f"it weighs {500 * 5 * G:.6g} N" in err[0] and "cannot float" in err[0], err

@@ -54,6 +54,7 @@ def check_scene(scene):
     check_size(scene)
     check_run(scene)
     check_ends(scene)
+    check_floating(scene)
     check_soil(scene)
     check_motion(scene)
     return scene
@@ -126,6 +127,53 @@ def check_ends(scene):
                 soil = ": a padeye below the seabed needs a [soil] table" if end == "anchor" else ""
                 raise _error(scene, f"lines[{i}].{end}", f"the {end} lies {depth:.6g} m below the "
                              f"seabed (more than the line's diameter, {segment.type.diameter:g} m){soil}")
+
+
+def _lift(line, rho, g):
+    """The most a string can lift what it hangs from [N]: the buoyancy in water of its parts lighter
+    than water (a string's other end on the seabed or free pulls down or not at all)."""
+    lift = sum(max(0.0, (rho * math.pi / 4.0 * s.type.diameter ** 2 - s.type.mass) * g * s.length)
+               for s in line.segments)
+    return lift + sum(max(0.0, rho * g * j.volume - j.mass * g + j.force[2]) for _, j in line.joints)
+
+
+def check_floating(scene):
+    """A free body or rod (with the rods it carries and the points on it) heavier than all the water
+    it can displace, whose lines all end on the seabed or hang free (so that they can lift it by no
+    more than their own buoyancy): no equilibrium in the water, which MoorDyn-C's relaxation would
+    let sink; refused, with its weight and buoyancy."""
+    env = scene.environment
+    rho, g = env.water_density, env.gravity
+    for name, body in sorted(scene.bodies.items()):
+        if body.kind != "free" or body.waterplane_area > 0.0 or np.any(body.force):
+            continue
+        rods = (body.rod,) if body.rod is not None else tuple(body.rods)
+        weight = g * (body.mass + (0.0 if body.rod is not None else sum(rod.mass for rod in rods)))
+        buoyancy = rho * g * (body.volume + sum(rod.area * rod.length for rod in rods))
+        on_body = {p.name for p in scene.points.values() if p.body == name}
+        for point in (scene.points[p] for p in on_body):
+            weight, buoyancy = weight + point.mass * g - min(point.force[2], 0.0), buoyancy + rho * g * point.volume
+            buoyancy += max(point.force[2], 0.0)
+        lift, bounded = 0.0, True
+        for line in scene.lines:
+            for e, end in enumerate(line.ends):
+                if end not in on_body:
+                    continue
+                other, at = line.ends[1 - e], (line.fairlead, line.anchor)[e]
+                point = scene.points.get(other)
+                free_end = point is not None and point.kind == "free" and point.body is None and \
+                    sum(o == other for l2 in scene.lines for o in l2.ends) == 1
+                grounded = point is not None and point.kind == "fixed" and point.body is None and \
+                    float(np.asarray(scene.seabed.gap_only(np.asarray(at, dtype=float)[None]))[0]) <= \
+                    line.segments[e - 1].type.diameter
+                bounded = bounded and (free_end or grounded)
+                lift += _lift(line, rho, g)
+        if bounded and on_body and weight > buoyancy + lift:
+            what = "rod" if body.rod is not None else "body"
+            raise _error(scene, f"bodies.{name}", f"the free {what} '{name}' cannot float: it weighs {weight:.6g} N "
+                         f"(with its rods and points), all the water it can displace lifts {buoyancy:.6g} N and its "
+                         f"lines, which end on the seabed or hang free, lift at most {lift:.6g} N; give it volume "
+                         "or buoyant lines, or make it fixed or coupled")
 
 
 def check_soil(scene):

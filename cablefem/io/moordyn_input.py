@@ -297,6 +297,8 @@ def _build(path, text, simplify=True, waves=True):
     syrope_ic, syrope_rows = _syrope_ic(found["SYROPE IC"], raw_lines, raw_types)
     lines, keys = _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, notes, syrope_ic,
                            syrope_rows, rod_points, rods)
+    keys.update({f"bodies.{body.name}": (path, _at(number, f"BODIES.{bid}")) for bid, (number, body) in bodies.items()})
+    keys.update({f"bodies.{rods[rid][3].name}": (path, _at(rods[rid][0], f"RODS.{rid}")) for rid in rods})
     failures = read_moordyn_failures(found["FAILURE"], raw_lines, points, lines, _at)
     if seafloor is not None:
         keys["seabed"] = (path, _at(seafloor[1], "OPTIONS.SeafloorFile"))

@@ -399,9 +399,10 @@ class _Balance:
 
     def solve(self, J, r):
         try:
-            return np.linalg.solve(J, -r)
+            step = np.linalg.solve(J, -r)
         except np.linalg.LinAlgError:
-            return np.linalg.lstsq(J, -r, rcond=None)[0]
+            step = np.linalg.lstsq(J, -r, rcond=None)[0]
+        return rods.limit(self.net, step)
 
     def trial(self, point, step, lam):
         q = point[0] + lam * step

@@ -95,3 +95,19 @@ def carried_terms(body, q, rho, g):
 
     size = max(rod.length for rod in body.rods) or 1.0
     return rows(q), _differences(rows, q, STEP * size)
+
+
+def limit(net, step):
+    """The Newton ``step`` (size,) of a network's coupling unknowns, scaled so that no body carrying
+    rods and no rod moves by more than its longest rod: a rod out of the water has no buoyancy to
+    stiffen its heave, and Newton's step from there falls through the water column (MoorDyn's
+    BodiesAndRods.dat starts its float's rods above the surface). Unchanged without rods."""
+    scale = 1.0
+    for name in net.bodies:
+        body = net.scene.bodies[name]
+        carried = (body.rod,) if body.rod is not None else tuple(body.rods)
+        if carried:
+            o = net.offsets[name]
+            move = max(np.linalg.norm(step[o:o + 3]), np.linalg.norm(step[o + 3:o + 6]) if body.rod else 0.0)
+            scale = min(scale, max(rod.length for rod in carried) / move if move > 0.0 else 1.0)
+    return step if scale >= 1.0 else scale * step
