@@ -12,7 +12,7 @@ import pytest
 from cablefem.cli import main
 from cablefem.errors import InputError
 from cablefem.io import load_scene
-from cablefem.loads.rod import drag, static_loads
+from cablefem.loads.rod import drag, mass_matrix, static_loads
 from cablefem.model.rod import Rod, RodType
 from cablefem.statics.scene import run_start
 
@@ -209,6 +209,27 @@ def test_a_rods_drag_is_the_closed_form_of_a_cylinder_across_and_along_the_flow(
     end_a = 0.0  # the current is across the rod: no axial drag at the submerged end
     np.testing.assert_allclose(force, [across / 2.0 + end_a, 0.0, 0.0], rtol=1e-12)
     np.testing.assert_allclose(moment, np.cross([0.0, 0.0, 1.0], force), rtol=1e-12)
+
+
+def test_a_rods_mass_matrix_is_a_cylinders_with_its_added_mass_across_and_at_its_ends():
+    """A submerged rod along x: across it m L + rho Ca A L, along it m L + 2 rho CaEnd (2/3) pi r^3;
+    turned about its end A across the axis (m + rho Ca A) L^3 / 3 + m L r^2 / 4, about its axis
+    m L r^2 / 2; symmetric. Half out of the water: the added mass of the submerged half and its one
+    submerged end. 1e-12 relative."""
+    t = RodType("r", 0.4, 60.0, 1.2, 1.0, 0.8, 0.6)
+    rod = Rod("rod1", t, [0, 0, -10], [5, 0, -10])
+    M = mass_matrix(rod.end_a, rod.end_b, rod, RHO)
+    m, L, r, area = 60.0, 5.0, 0.2, math.pi * 0.04
+    across, end = m * L + RHO * 1.0 * area * L, RHO * 0.6 * 2.0 / 3.0 * math.pi * r ** 3
+    np.testing.assert_allclose(np.diag(M), [m * L + 2 * end, across, across, m * L * r * r / 2,
+                                            (m + RHO * area) * L ** 3 / 3 + m * L * r * r / 4,
+                                            (m + RHO * area) * L ** 3 / 3 + m * L * r * r / 4], rtol=1e-12)
+    np.testing.assert_allclose(M, M.T, rtol=0, atol=1e-12 * np.abs(M).max())
+    np.testing.assert_allclose(M[5, 1], (m + RHO * area) * L ** 2 / 2, rtol=1e-12)  # a y push turns it about z
+    half = Rod("rod1", t, [0, 0, -2], [0, 0, 2])
+    M = mass_matrix(half.end_a, half.end_b, half, RHO)
+    np.testing.assert_allclose(np.diag(M)[:3], [m * 4 + RHO * area * 2, m * 4 + RHO * area * 2, m * 4 + end],
+                               rtol=1e-12)
 
 
 def test_a_rods_buoyancy_is_archimedes_in_and_partly_out_of_the_water():

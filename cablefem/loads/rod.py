@@ -1,5 +1,6 @@
 """A rigid rod's own loads (MoorDyn's RODS; ``cablefem.model.rod``): weight, buoyancy with partial
-submergence, and the transverse drag along it and the axial drag at its ends.
+submergence, the transverse drag along it and the axial drag at its ends, and its mass matrix with
+the added mass across it and at its ends.
 
 MoorDyn-C's ``Rod::doRHS`` (Rod.cpp) lumps these on the rod's NumSegs + 1 nodes: the dry weight
 m_i g, the buoyancy of the submerged fraction VOF of each node's volume (its side pressure) plus the
@@ -73,3 +74,44 @@ def drag(end_a, end_b, velocity_a, velocity_b, rod, water_density, current=np.ze
             force += end
             moment += np.cross(arm * axis, end)
     return force, moment
+
+
+def mass_matrix(end_a, end_b, rod, water_density):
+    """The rod's 6 x 6 mass matrix about end A [kg, kg m, kg m^2] (force and moment against the
+    acceleration and angular acceleration of a frame at A): its own mass, the added mass rho Ca A
+    across its submerged axis and rho CaEnd V_end along it at each submerged end, V_end = (2/3) pi
+    (d/2)^3 (Rod.cpp's M[i], lumped there on its nodes and integrated here along the axis), and
+    the cylinder's own inertia about its axis m r^2 / 2 and across it m r^2 / 4 per unit length."""
+    a, b = np.asarray(end_a, dtype=float), np.asarray(end_b, dtype=float)
+    axis = b - a
+    L = float(np.linalg.norm(axis))
+    q = axis / L
+    Q, I3 = np.outer(q, q), np.eye(3)
+    t, r = rod.type, 0.5 * rod.type.diameter
+    s0, s1 = submerged_interval(a[2], b[2])
+    m = rod.mass / L  # per unit length
+    added = water_density * t.Ca * rod.area  # per unit length, across the axis, where submerged
+
+    def skew(v):
+        return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+    # moments of the mass along the axis: int mu(s) s^k ds over s in [0, L], k = 0, 1, 2
+    own = [m * L, m * L ** 2 / 2.0, m * L ** 3 / 3.0]
+    wet = [added * L ** (k + 1) * (s1 ** (k + 1) - s0 ** (k + 1)) / (k + 1) for k in range(3)]
+    block = np.zeros((6, 6))
+    translation = own[0] * I3 + wet[0] * (I3 - Q)
+    first = own[1] * I3 + wet[1] * (I3 - Q)  # int mu s ds, acting through the arm s q
+    second = own[2] + wet[2]
+    block[:3, :3] = translation
+    # a point at s q moves with a + alpha x (s q): force = M (a - s [q]x alpha), moment = s q x force
+    block[:3, 3:] = -first @ skew(q)
+    block[3:, :3] = skew(q) @ first
+    block[3:, 3:] = second * (skew(q) @ -skew(q)) + m * L * r * r * (0.5 * Q + 0.25 * (I3 - Q))
+    volume = 2.0 / 3.0 * np.pi * r ** 3
+    for end, arm in ((a, 0.0), (b, L)):
+        if end[2] < 0.0:
+            mass = water_density * t.CaEnd * volume * Q
+            block[:3, :3] += mass
+            block[:3, 3:] += -arm * mass @ skew(q)
+            block[3:, :3] += arm * skew(q) @ mass
+    return block
