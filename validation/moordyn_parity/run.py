@@ -1,8 +1,8 @@
 """MoorDyn's own test inputs in both codes under a smooth fairlead motion (issue 36, deliverable 6):
 fairlead forces compared over the last periods, each code at the file's mesh and refined.
 
-Cases (``CASES``), each a file of MoorDyn v2.7's ``tests/Mooring`` copied to ``inputs/`` with its
-source line, its coupled points moved by a harmonic surge (ramped in over the first period):
+Cases (``CASES``), each a file of MoorDyn v2.7's ``tests/Mooring`` copied to ``inputs/`` (its README
+names the source), its coupled points moved by a harmonic surge (ramped in over the first period):
 
 - ``polyester``: ``polyester/simple.txt``, a 1400 m polyester line (EA 3.339e8 N, BA -1: a
   critical damping ratio of 1 per segment) from an anchor on the seabed 372 m deep to a fairlead
