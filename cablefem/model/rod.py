@@ -88,7 +88,8 @@ def axis_angles(direction):
     """(roll, pitch, 0) [rad] of the rotation R = Rx Ry Rz that turns the z axis onto the unit
     ``direction`` (3,): R e_z = (sin p, -sin r cos p, cos r cos p)."""
     u = np.asarray(direction, dtype=float) / np.linalg.norm(direction)
-    return np.array([math.atan2(-u[1], u[2]), math.asin(max(-1.0, min(1.0, u[0]))), 0.0])
+    roll = math.atan2(-u[1], u[2]) if math.hypot(u[1], u[2]) > 1e-12 else 0.0  # along x: any roll, take 0
+    return np.array([roll, math.asin(max(-1.0, min(1.0, u[0]))), 0.0])
 
 
 def rod_body(rod, Body):
