@@ -284,7 +284,8 @@ def strings(lines, points, bodies, where=lambda key: key):
         if name not in at_point:
             raise InputError("no line uses this point", key=where(f"points.{name}"))
     series = {name for name, ends in at_point.items()
-              if points[name].kind == "free" and points[name].body is None and len(ends) == 2}
+              if points[name].kind == "free" and points[name].body is None and len(ends) == 2
+              and not any(lines[index].hermite for index, _ in ends)}  # a point is a hinge on lines that bend
     used, out = set(), []
     for start in range(len(lines)):
         if start in used:
@@ -332,11 +333,8 @@ def _string(parts, points, bodies, at_point):
         if kind == "free" and points[name].joint.loaded:  # a free end carries its point
             joints.append((0 if e == 0 else n, points[name].joint))
     prescribed = tuple(kind not in ("free", "junction") for kind in kinds)
-    # one element kind along a string: Hermite if any of its lines bends (a chain on Hermite elements
-    # is the chain with EI = 0); the tangent is continuous through the series points between them
-    element = "hermite" if any(part.hermite for part in parts) else parts[0].element
     return Line("+".join(p.name for p in parts), parts[0].anchor, parts[-1].fairlead, tuple(segments),
-                parts[0].order, joints=tuple(joints), prescribed=prescribed, ends=ends, element=element,
+                parts[0].order, joints=tuple(joints), prescribed=prescribed, ends=ends, element=parts[0].element,
                 tangents=(parts[0].tangents[0], parts[-1].tangents[1]))
 
 
