@@ -395,6 +395,38 @@ def test_two_bending_lines_meeting_at_a_free_point_are_hinged_there(tmp_path, el
     assert abs(clamp_curvatures[1] / (w * L**2 / (3.0 * EI)) - 1.0) < 0.3  # and at its clamps w (2L)^2 / 12
 
 
+ON_A_BODY = SCENE.replace('fairlead = [0.0, 0.0, -10.0]', 'fairlead = "hangoff"') + """[bodies.vessel]
+kind = "coupled"
+position = [0.0, 0.0, -10.0]
+[bodies.vessel.motion]
+kind = "harmonic"
+amplitude = [1.0, 0.0, 0.0, 0.0, PITCH, 0.0]
+period = 10.0
+[points.hangoff]
+body = "vessel"
+position = [0.0, 0.0, 0.0]
+"""
+
+
+def test_a_clamp_on_a_body_that_turns_or_is_free_is_refused_with_its_key(tmp_path):
+    """A clamp that turns with its body (R(t) d) is not built: a clamped line end on a coupled body whose
+    motion turns it is refused in a run, naming the body's motion (its statics, at rest, solve); one on a
+    free body is refused when the scene is read (the clamp's moment is not in the body's balance). A
+    body that only translates keeps the clamp's direction, as a moving fairlead does."""
+    from cablefem.model.network import check_no_coupling
+
+    check_no_coupling(load_scene(write(tmp_path, ON_A_BODY.replace("PITCH", "0.0"))))
+    turning = load_scene(write(tmp_path, ON_A_BODY.replace("PITCH", "0.05")))
+    with pytest.raises(InputError, match="whose motion turns it .* a clamp that turns with its body is not built") as error:
+        check_no_coupling(turning)
+    assert error.value.key == "bodies.vessel.motion"
+    free = ON_A_BODY.replace('kind = "coupled"', 'kind = "free"\nmass = 1e5\ninertia = [1e6, 1e6, 1e6]').replace(
+        "[bodies.vessel.motion]\nkind = \"harmonic\"\namplitude = [1.0, 0.0, 0.0, 0.0, PITCH, 0.0]\nperiod = 10.0\n", "")
+    with pytest.raises(InputError, match="free body 'vessel' is not built") as error:
+        load_scene(write(tmp_path, free))
+    assert error.value.key == "lines[0].fairlead_tangent"
+
+
 @pytest.mark.parametrize("assembly", ["numpy", "kernel"])
 def test_a_bending_line_with_its_own_axial_law_pulls_and_pushes_as_with_its_ea(assembly, rng):
     """A line type that bends with an axial law of its own (``cablefem.loads.rope``) on Hermite elements:

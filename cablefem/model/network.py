@@ -283,6 +283,14 @@ def strings(lines, points, bodies, where=lambda key: key):
     for name, point in points.items():
         if name not in at_point:
             raise InputError("no line uses this point", key=where(f"points.{name}"))
+    for index, line in enumerate(lines):  # a clamp on a free body: its moment is not in the body's balance
+        for end, name in enumerate(line.ends):
+            body = None if name is None else bodies.get(points[name].body)
+            if line.tangents[end] is not None and body is not None and body.kind == "free":
+                raise InputError(f"a clamped tangent at point '{name}' of free body '{body.name}' is not built (the "
+                                 "clamp's moment would not enter the body's balance): pin the end (leave the "
+                                 "tangent out) or make the body coupled or fixed",
+                                 key=where(f"lines[{index}].{('anchor', 'fairlead')[end]}_tangent"))
     series = {name for name, ends in at_point.items()
               if points[name].kind == "free" and points[name].body is None and len(ends) == 2
               and not any(lines[index].hermite for index, _ in ends)}  # a point is a hinge on lines that bend
@@ -362,13 +370,33 @@ def point_position(point, bodies):
 
 def check_no_coupling(scene):
     """InputError if ``scene`` has free bodies, whose dynamics are not solved yet (their statics
-    are: ``cablefem.statics.network``, ``cablefem static``); junctions step in a
-    ``cablefem.dynamics.group.Group``, with any integrator."""
+    are: ``cablefem.statics.network``, ``cablefem static``), or a clamp on a body that turns
+    (``check_clamps_do_not_turn``); junctions step in a ``cablefem.dynamics.group.Group``, with any
+    integrator."""
+    check_clamps_do_not_turn(scene)
     _, free_bodies = coupling(scene.lines, scene.points, scene.bodies)
     if free_bodies:
         what = ", ".join(f"body '{name}' (free)" for name in free_bodies)
         raise InputError(f"{what}: the dynamics of a free body are not solved yet (`cablefem static` solves "
                          "its equilibrium); for a run, make the body coupled or fixed", key="bodies")
+
+
+def check_clamps_do_not_turn(scene):
+    """InputError if a clamped tangent ends a line at a point of a coupled body whose motion turns
+    it during the run: the clamp would keep its direction in the scene's frame while the body turns
+    (a clamp that turns with its body, R(t) d, is not built; in statics the body is at rest)."""
+    times = np.linspace(0.0, scene.solver.duration, 2001)
+    for line in scene.lines:
+        for end, name in enumerate(line.ends):
+            body = None if name is None else scene.bodies.get(scene.points[name].body)
+            if line.tangents[end] is None or body is None or body.kind != "coupled" or body.motion is None:
+                continue
+            turn = float(np.max(np.abs(body_motion(body.motion, times)[0][:, 3:])))
+            if turn > 0.0:
+                raise InputError(f"line '{line.name}' is clamped (a tangent) at point '{name}' of body '{body.name}', "
+                                 f"whose motion turns it (up to {math.degrees(turn):.3g} deg): a clamp that turns "
+                                 "with its body is not built; pin the end (leave the tangent out) or give the body "
+                                 "a motion without rotation", key=f"bodies.{body.name}.motion")
 
 
 def junction_ends(lines, points, bodies):
