@@ -35,24 +35,18 @@ Measured on MoorDyn v2.7.1's tests/Mooring (the moordyn 2.7 wheel; 2 shared core
 
   | file | difference | why |
   |---|---|---|
-  | BeamSimplySupported.txt | 22 % | a beam carries little axial tension: its end tensions are small against its bending (MoorDyn's own beam test accepts 50 % error in deflection) |
+  | BeamSimplySupported.txt | 22 % | two quantities: MoorDyn-C's node tension is its end segment's axial tension (6332 N), cablefem's end tension the end force's magnitude, the beam's shear included (7743 N = |(5993, 4903)| N). The axial tension inside the line is 6010 N in cablefem, 6330 N in MoorDyn-C at its 19 segments; a pinned beam under its weight whose ends cannot move apart carries H = 6012.9 N (EI w'''' - H w'' = w with H = EA / 2L int w'^2 dx, solved to 1e-6) |
   | body_tests/bodyDrag.txt | 232 % | a free body: cablefem's static equilibrium against MoorDyn-C's dynamic relaxation, not yet explained |
-  | syrope/exp_wc, quadratic_wc | 89 %, 35 % | MoorDyn-C's initial state is not the file's SYROPE IC (below) |
+  | syrope/exp_wc, quadratic_wc | 89 %, 35 % | MoorDyn-C drops owc.dat's (0, 0) row and starts its working curves at the next row (below) |
   | wavekin_2.txt, wavekin_3.txt, wavekin_7.txt | 2.8 %, 2.8 %, 2.6 % | TmaxIC 0: MoorDyn-C starts from its initial shape without relaxing it (the _curr2 files, with TmaxIC 200 and the fairlead 2 m higher, agree to 0.41 %) |
 
-  SYROPE (g = 0, one segment held at a strain e between fixed ends): cablefem's statics holds the slow
-  strain where the SYROPE IC puts it (Tmean0 on the working curve of Tmax0) and gives T = Tmean0 +
-  s S (e - x(Tmean0)), the springs in series (docs/scene.md): 2.9123e5 N for exp_wc by hand from
-  owc.dat, 2.9123e5 N from ``cablefem static``; 4.340e5 N for quadratic_wc, whose strain the file
-  chose on that curve. MoorDyn-C's tension after Init is 1.538e5 N (exp_wc) and 3.224e5 N
-  (quadratic_wc), the same for TmaxIC 0.01 to 1 s, so its stationary IC solve's first pseudo-step
-  (MoorDyn2.cpp, "Finalizing ICs using static solve") moves the slow strain, whose relaxation time
-  BA / (alpha + beta T) is ~300 s. Held at rest for 4500 s, MoorDyn-C settles at 3.124e5 N and
-  3.673e5 N, not at its own working curve's equilibrium at e (3.753e5 N and 4.340e5 N from
-  owc.dat): its damping force after Init fits a working curve of T_max ~ 1.5e6 N against the file's
-  1.3886e6 N, as if its IC raised T_max. Not confirmed (the Python API does not expose T_max; the next
-  step is a MoorDyn-C build that prints it). linear_wc agrees (0.00 %): a linear working curve
-  below T_max has the same equilibrium for any T_max above T.
+  SYROPE: MoorDyn-C skips the first three lines of a curve file and owc.dat has two header lines,
+  so MoorDyn-C drops its (0, 0) row and starts its working curves at the first row it reads (eps_0 =
+  2.07e-3 in ``Line::setWorkingCurve``), where cablefem starts them at (0, 0)
+  (verification/axial_laws, "MoorDyn-C and owc.dat"). MoorDyn-C's numbers follow from that by hand
+  to five digits: after Init 1.5378e5 N (exp_wc) and 3.2240e5 N (quadratic_wc); held at rest for
+  4500 s it settles at 3.1241e5 N and 3.6727e5 N, its working curve's tension at the file's strain.
+  The linear working curve with k1 >= 1 does not use eps_0: 0.00 %.
 """
 
 import argparse
