@@ -29,8 +29,10 @@ Measured on MoorDyn v2.7.1's tests/Mooring (the moordyn 2.7 wheel; 2 shared core
   not: RODS (5: BeamCantilevered, BodiesAndRods, RodHanging, local_euler/complex_system,
   riser/riser_ic1), a free body in a run (2: body_tests/bodyDrag, rotatingBody; their statics solve),
   polyester/visco.txt, a 1 m line between points 2 m apart (a strain of 100 %, refused as absurd), and
-  tripod.txt, whose statics do not converge with its lines' EI (a hinge between lines that bend is not
-  built; benchmarks/moordyn_statics.py).
+  tripod.txt, whose statics did not converge with its lines' EI at that measurement; its points are
+  hinges now, its statics converge and a run from them holds still (tests/test_moordyn_files.py,
+  tests/test_junction_steps.py), not re-measured here. Its TmaxIC is 0: MoorDyn-C's tensions are those
+  of the file's unrelaxed layout after one step (unbalanced at its free points), not an equilibrium.
 - Median end-tension difference 0.80 % over 38 lines (target <= 2 %, met). The lines over 2 %:
 
   | file | difference | why |

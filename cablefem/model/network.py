@@ -14,11 +14,14 @@ about the x, y', z'' axes, each positive by the right-hand rule: roll turns +y t
 
 Topology (``strings``): lines joined through free points that join exactly two line ends (a
 clump weight, a buoy, a connector in series) are one finite element line, a *string*, with the
-point as a ``Joint`` at the vertex between them: one banded block, solved as one line. A free
-point at the end of one line only is a free end of its string. What remains are the string ends
+point as a ``Joint`` at the vertex between them: one banded block, solved as one line. Where one
+of the two lines bends (Hermite elements) the point is a hinge, as MoorDyn's points are: the lines
+share its position, not their tangents, so each is a string of its own and the point a junction
+(a welded joint is one line of several segments). A free point at the end of one line only is a
+free end of its string. What remains are the string ends
 at fixed and coupled points and at points of fixed and coupled bodies (prescribed paths,
-``EndPath``), and the *coupling* unknowns: free points where three or more line ends meet and
-free bodies, which ``cablefem.statics.network`` solves for in statics.
+``EndPath``), and the *coupling* unknowns: free points where three or more line ends meet (or
+two, at a hinge) and free bodies, which ``cablefem.statics.network`` solves for in statics.
 """
 
 import math
@@ -27,6 +30,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from cablefem.errors import InputError
+from cablefem.model.clamps import check_clamps_do_not_turn, check_no_free_body_clamps
 from cablefem.model.line import Joint, Line
 from cablefem.model.motion import FairleadPath, body_motion
 
@@ -283,14 +287,7 @@ def strings(lines, points, bodies, where=lambda key: key):
     for name, point in points.items():
         if name not in at_point:
             raise InputError("no line uses this point", key=where(f"points.{name}"))
-    for index, line in enumerate(lines):  # a clamp on a free body: its moment is not in the body's balance
-        for end, name in enumerate(line.ends):
-            body = None if name is None else bodies.get(points[name].body)
-            if line.tangents[end] is not None and body is not None and body.kind == "free":
-                raise InputError(f"a clamped tangent at point '{name}' of free body '{body.name}' is not built (the "
-                                 "clamp's moment would not enter the body's balance): pin the end (leave the "
-                                 "tangent out) or make the body coupled or fixed",
-                                 key=where(f"lines[{index}].{('anchor', 'fairlead')[end]}_tangent"))
+    check_no_free_body_clamps(lines, points, bodies, where)
     series = {name for name, ends in at_point.items()
               if points[name].kind == "free" and points[name].body is None and len(ends) == 2
               and not any(lines[index].hermite for index, _ in ends)}  # a point is a hinge on lines that bend
@@ -347,8 +344,9 @@ def _string(parts, points, bodies, at_point):
 
 
 def coupling(lines, points, bodies):
-    """The coupling unknowns of strings ``lines``: the junction points (free points joining three
-    or more string ends, or one on a free body) and the free bodies, as (points, bodies) name lists."""
+    """The coupling unknowns of strings ``lines``: the junction points (free points joining two or
+    more string ends: three or more, or two at a hinge; or one on a free body) and the free bodies,
+    as (points, bodies) name lists."""
     junctions = sorted({name for line in lines for name, given in zip(line.ends, line.prescribed)
                         if name is not None and not given and not _free_end(line, name, lines)})
     free_bodies = sorted(name for name, body in bodies.items() if body.kind == "free")
@@ -379,24 +377,6 @@ def check_no_coupling(scene):
         what = ", ".join(f"body '{name}' (free)" for name in free_bodies)
         raise InputError(f"{what}: the dynamics of a free body are not solved yet (`cablefem static` solves "
                          "its equilibrium); for a run, make the body coupled or fixed", key="bodies")
-
-
-def check_clamps_do_not_turn(scene):
-    """InputError if a clamped tangent ends a line at a point of a coupled body whose motion turns
-    it during the run: the clamp would keep its direction in the scene's frame while the body turns
-    (a clamp that turns with its body, R(t) d, is not built; in statics the body is at rest)."""
-    times = np.linspace(0.0, scene.solver.duration, 2001)
-    for line in scene.lines:
-        for end, name in enumerate(line.ends):
-            body = None if name is None else scene.bodies.get(scene.points[name].body)
-            if line.tangents[end] is None or body is None or body.kind != "coupled" or body.motion is None:
-                continue
-            turn = float(np.max(np.abs(body_motion(body.motion, times)[0][:, 3:])))
-            if turn > 0.0:
-                raise InputError(f"line '{line.name}' is clamped (a tangent) at point '{name}' of body '{body.name}', "
-                                 f"whose motion turns it (up to {math.degrees(turn):.3g} deg): a clamp that turns "
-                                 "with its body is not built; pin the end (leave the tangent out) or give the body "
-                                 "a motion without rotation", key=f"bodies.{body.name}.motion")
 
 
 def junction_ends(lines, points, bodies):
