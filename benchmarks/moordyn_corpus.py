@@ -32,8 +32,10 @@ Measured on MoorDyn v2.7.1's tests/Mooring (the moordyn 2.7 wheel; 2 shared core
   riser/riser_ic1.txt, whose statics do not converge (a 29.5 kg free body carrying a 0.2 m rod, every
   line end on its x axis, so that nothing turns it about that axis, between lines that bend),
   polyester/visco.txt, a 1 m line between points 2 m apart (a strain of 100 %, refused as absurd), and
-  tripod.txt, whose statics do not converge with its lines' EI (a hinge between lines that bend is not
-  built; benchmarks/moordyn_statics.py).
+  tripod.txt, whose statics did not converge with its lines' EI at that measurement; its points are
+  hinges now, its statics converge and a run from them holds still (tests/test_moordyn_files.py,
+  tests/test_junction_steps.py), not re-measured here. Its TmaxIC is 0: MoorDyn-C's tensions are those
+  of the file's unrelaxed layout after one step (unbalanced at its free points), not an equilibrium.
 - Median end-tension difference 1.17 % over 45 lines (target <= 2 %, met). The lines over 2 %:
 
   | file | difference | why |

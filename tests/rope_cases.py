@@ -34,18 +34,19 @@ LAWS = {
 INITIAL = (1.3886e6, 4.339e5)
 
 
-def rope_type(kind, slack=False):
-    """A 0.2 m polyester line type of law ``kind`` (``LAWS``), MoorDyn-C's slack law with ``slack``."""
+def rope_type(kind, slack=False, EI=0.0):
+    """A 0.2 m polyester line type of law ``kind`` (``LAWS``), MoorDyn-C's slack law with ``slack``,
+    bending with ``EI`` [N m^2] (a rod: it pushes)."""
     law = LAWS[kind]
     return LineType(f"rope-{kind}", 0.2, 40.0, law.reference_EA, Cd_normal=1.6, Cd_tangential=0.1, Ca_normal=1.0,
-                    damping_when_slack=slack, axial=law)
+                    damping_when_slack=slack, axial=law, EI=EI)
 
 
-def rope_system(kind, order, slack=False, rng=None):
+def rope_system(kind, order, slack=False, rng=None, EI=0.0):
     """A line of 6 elements of law ``kind`` (``order``: 1-3, or "hermite": Hermite elements) between
     prescribed ends over a 100 m flat seabed, its
     slow strain (viscoelastic, SYROPE) set to 0.4-0.8 % and SYROPE's peak to its initial condition."""
-    line_type = rope_type(kind, slack)
+    line_type = rope_type(kind, slack, EI)
     initial = INITIAL if line_type.axial.kind == "syrope" else None
     kind_of_element = {"element": "hermite"} if order == "hermite" else {"order": order}  # order "hermite": Hermite
     line = Line("rope", [0.0, 0.0, -50.0], [101.8, 0.0, -50.0], [Segment(line_type, 100.0, 6, initial)],
@@ -60,10 +61,11 @@ def rope_system(kind, order, slack=False, rng=None):
     return system
 
 
-def rope_state(system, rng):
-    """X of a wavy taut line (strains 1.3-2.7 %, away from the table's rows), nodal velocities of
-    ~0.05 m/s and random accelerations: (X, V, A)."""
-    X = system.fem.interpolate(lambda s: np.column_stack([s * 1.02 + 0.05 * np.sin(s / 10.0), 0.2 * np.cos(s / 7.0),
+def rope_state(system, rng, stretch=1.02):
+    """X of a wavy taut line (strains 1.3-2.7 %, away from the table's rows; ``stretch`` 0.99: a
+    compressed one, strains -1.5 to -0.5 %), nodal velocities of ~0.05 m/s and random accelerations:
+    (X, V, A)."""
+    X = system.fem.interpolate(lambda s: np.column_stack([s * stretch + 0.05 * np.sin(s / 10.0), 0.2 * np.cos(s / 7.0),
                                                           -50.0 + 0.5 * np.sin(s / 13.0)]))
     V = rng.standard_normal(X.shape) * 0.05
     A = rng.standard_normal(X.shape)

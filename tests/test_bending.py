@@ -3,6 +3,7 @@ three assembly paths held equal, the scene keys and their errors, MoorDyn's EI, 
 closed-form studies are tests/test_verification_bending.py and tests/test_validation_cables.py."""
 
 import json
+from dataclasses import replace
 import math
 import subprocess
 import warnings
@@ -300,38 +301,161 @@ def test_lagrange_lines_report_zero_curvature_and_scenes_without_ei_no_bending_c
     assert not BendingRows(scene.lines) and _columns(scene, bending=BendingRows(scene.lines))[-1] == "fz"
 
 
-def test_two_bending_lines_joined_through_a_free_point_are_one_c1_string(tmp_path):
-    text = SCENE.replace('''[[lines]]
-name = "cable"
-anchor = [-250.0, 0.0, -100.0]
-fairlead = [0.0, 0.0, -10.0]
-segments = [{ type = "cable", length = 300.0, elements = 30 }]
-element = "hermite"
-fairlead_tangent = [0.0, 0.0, 1.0]''', '''[points.joint]
+BEAMS = """name = "beams"
+[line_types.beam]
+diameter = 0.01
+mass = 10.0
+EA = 1.0e8
+EI = 1.0e8
+[points.left]
+kind = "fixed"
+position = [0.0, 0.0, 1.0]
+[points.right]
+kind = "fixed"
+position = [20.0, 0.0, 1.0]
+[seabed]
+kind = "horizontal"
+depth = 1000.0
+"""
+#: two beams of 10 m, each clamped level at its outer end, meeting at a free point
+HINGED = BEAMS + """[points.hinge]
 kind = "free"
-position = [-120.0, 0.0, -60.0]
+position = [10.0, 0.0, 1.0]
 [[lines]]
-name = "lower"
-anchor = [-250.0, 0.0, -100.0]
-fairlead = "joint"
-segments = [{ type = "cable", length = 160.0, elements = 16 }]
+name = "a"
+anchor = "left"
+fairlead = "hinge"
+segments = [{ type = "beam", length = 10.0, elements = ELEMENTS }]
 element = "hermite"
+anchor_tangent = [1.0, 0.0, 0.0]
 [[lines]]
-name = "upper"
-anchor = "joint"
-fairlead = [0.0, 0.0, -10.0]
-segments = [{ type = "cable", length = 140.0, elements = 14 }]
+name = "b"
+anchor = "right"
+fairlead = "hinge"
+segments = [{ type = "beam", length = 10.0, elements = ELEMENTS }]
 element = "hermite"
-fairlead_tangent = [0.0, 0.0, 1.0]''')
-    scene = load_scene(write(tmp_path, text))
-    line, = scene.lines
-    assert line.hermite and len(line.segments) == 2 and line.tangents[1] is not None
-    single = load_scene(write(tmp_path, SCENE, "single.toml"))
-    results = []
-    for each in (scene, single):
-        system = LineSystem(each.lines[0], each.seabed, each.contact, each.environment)
-        results.append(np.linalg.norm(-system.residual(solve_static(system).X)[system.fem.fairlead_dof]))
-    assert results[0] == pytest.approx(results[1], rel=1e-3)  # the same cable, a vertex more or less
+anchor_tangent = [-1.0, 0.0, 0.0]
+"""
+#: the same beam welded: one line of two segments, its tangent continuous at x = 10 m
+WELDED = BEAMS + """[[lines]]
+name = "a"
+anchor = "left"
+fairlead = "right"
+segments = [{ type = "beam", length = 10.0, elements = ELEMENTS }, { type = "beam", length = 10.0, elements = ELEMENTS }]
+element = "hermite"
+anchor_tangent = [1.0, 0.0, 0.0]
+fairlead_tangent = [1.0, 0.0, 0.0]
+"""
+
+
+@pytest.mark.parametrize("elements", [4, 8])
+def test_two_bending_lines_meeting_at_a_free_point_are_hinged_there(tmp_path, elements):
+    """Two beams of 10 m in air (EI 1e8 N m^2, 10 kg/m), each clamped level at its outer end, meet at a
+    free point between them. A point is a hinge (MoorDyn's points): the two lines are strings of their
+    own and the point a junction, sharing its position, each end's tangent free. By symmetry the hinge
+    carries no shear and it carries no moment, so each beam is a cantilever under its weight: the
+    hinge drops w L^4 / (8 EI) (Hermite vertices are exact for Euler-Bernoulli; the rest is the
+    geometric nonlinearity, ~1e-7), and the curvature at the hinge ends vanishes as the mesh is
+    refined (the last element's cubic against the quartic: ~(h / L)^2 / 6 of the clamp's). Welded
+    (one line of two segments), the same beam is clamped-clamped: its middle drops w (2L)^4 / (384 EI),
+    a third of the hinge's, and bends there with a third of the clamp's curvature."""
+    from cablefem.statics.scene import static_lines
+
+    L, EI = 10.0, 1.0e8
+    drops, mid_curvatures, clamp_curvatures = [], [], []
+    for text in (HINGED, WELDED):
+        scene = load_scene(write(tmp_path, text.replace("ELEMENTS", str(elements))))
+        w = 10.0 * scene.environment.gravity
+        systems, results, _, network = static_lines(scene)
+        ends = []
+        for system, result in zip(systems, results):
+            n = system.fem.n_vertices
+            kappa, _ = node_curvature(system, result.X)
+            ends.append((1.0 - result.X[:n, 2], kappa))
+        if network is not None:  # the hinge: two strings, each from its clamp to the junction
+            assert sorted(line.name for line in scene.lines) == ["a", "b"] and network.points.keys() == {"hinge"}
+            (drop_a, kappa_a), (drop_b, kappa_b) = ends
+            np.testing.assert_allclose(drop_a, drop_b, rtol=0, atol=1e-9 * drop_a[-1])  # symmetric
+            np.testing.assert_allclose(network.points["hinge"][2], 1.0 - drop_a[-1], rtol=0, atol=1e-12)
+            drops.append(drop_a[-1])
+            mid_curvatures.append(max(kappa_a[-1], kappa_b[-1]))
+            clamp_curvatures.append(kappa_a[0])
+        else:
+            (drop, kappa), = ends
+            middle = len(drop) // 2
+            drops.append(drop[middle])
+            mid_curvatures.append(kappa[middle])
+            clamp_curvatures.append(kappa[0])
+    cantilever = w * L**4 / (8.0 * EI)
+    assert abs(drops[0] / cantilever - 1.0) < 1e-6
+    assert abs(drops[1] / (w * (2 * L) ** 4 / (384.0 * EI)) - 1.0) < 1e-6
+    clamp_kappa = w * L**2 / (2.0 * EI)  # the cantilever's clamp: M = w L^2 / 2
+    assert mid_curvatures[0] < 0.25 * (L / elements) ** 2 / L**2 * clamp_kappa
+    assert abs(mid_curvatures[1] / (w * L**2 / (6.0 * EI)) - 1.0) < 0.1  # clamped-clamped: w (2L)^2 / 24
+    assert abs(clamp_curvatures[1] / (w * L**2 / (3.0 * EI)) - 1.0) < 0.3  # and at its clamps w (2L)^2 / 12
+
+
+ON_A_BODY = SCENE.replace('fairlead = [0.0, 0.0, -10.0]', 'fairlead = "hangoff"') + """[bodies.vessel]
+kind = "coupled"
+position = [0.0, 0.0, -10.0]
+[bodies.vessel.motion]
+kind = "harmonic"
+amplitude = [1.0, 0.0, 0.0, 0.0, PITCH, 0.0]
+period = 10.0
+[points.hangoff]
+body = "vessel"
+position = [0.0, 0.0, 0.0]
+"""
+
+
+def test_a_clamp_on_a_body_that_turns_or_is_free_is_refused_with_its_key(tmp_path):
+    """A clamp that turns with its body (R(t) d) is not built: a clamped line end on a coupled body whose
+    motion turns it is refused in a run, naming the body's motion (its statics, at rest, solve); one on a
+    free body is refused when the scene is read (the clamp's moment is not in the body's balance). A
+    body that only translates keeps the clamp's direction, as a moving fairlead does."""
+    from cablefem.model.network import check_no_coupling
+
+    check_no_coupling(load_scene(write(tmp_path, ON_A_BODY.replace("PITCH", "0.0"))))
+    turning = load_scene(write(tmp_path, ON_A_BODY.replace("PITCH", "0.05")))
+    with pytest.raises(InputError, match="whose motion turns it .* a clamp that turns with its body is not built") as error:
+        check_no_coupling(turning)
+    assert error.value.key == "bodies.vessel.motion"
+    free = ON_A_BODY.replace('kind = "coupled"', 'kind = "free"\nmass = 1e5\ninertia = [1e6, 1e6, 1e6]').replace(
+        "[bodies.vessel.motion]\nkind = \"harmonic\"\namplitude = [1.0, 0.0, 0.0, 0.0, PITCH, 0.0]\nperiod = 10.0\n", "")
+    with pytest.raises(InputError, match="free body 'vessel' is not built") as error:
+        load_scene(write(tmp_path, free))
+    assert error.value.key == "lines[0].fairlead_tangent"
+
+
+@pytest.mark.parametrize("assembly", ["numpy", "kernel"])
+def test_a_bending_line_with_its_own_axial_law_pulls_and_pushes_as_with_its_ea(assembly, rng):
+    """A line type that bends with an axial law of its own (``cablefem.loads.rope``) on Hermite elements:
+    its law is the tension, with the Hermite strain at the same Simpson points, and it pushes (a rod: the
+    law carried into compression at the slope EA). A linear strain-tension table of slope EA gives the
+    constant EA's rows and tangent, taut and compressed (1e-12; the push not zero)."""
+    from cablefem.model.axial import AxialLaw, Curve
+
+    EA = 1.0e7
+    law = AxialLaw("table", Curve.from_rows([0.0, 0.1], [0.0, 0.1 * EA], "EA"))
+    plain = replace(CABLE, damping=0.0)  # a law of its own takes BA, not beta; statics has neither
+    roped = replace(plain, name="roped", EA=law.reference_EA, axial=law)
+    for stretch in (1.02, 0.99):  # taut, then compressed
+        rows = []
+        for kind in (plain, roped):
+            system = cable_system(kind=kind, assembly=assembly)
+            assert system.has("rope") == (kind is roped)
+            X, _, _ = wavy_state(system, rng)
+            n = system.fem.n_vertices
+            X[:n] = X[0] + stretch * (X[:n] - X[0])  # the vertices' chords scaled
+            R, blocks = system.evaluate(system.state(X))
+            rows.append((R, system.matrix(blocks).toarray()))
+        (R0, K0), (R1, K1) = rows
+        np.testing.assert_allclose(R1, R0, rtol=0, atol=1e-12 * np.abs(R0).max())
+        np.testing.assert_allclose(K1, K0, rtol=0, atol=1e-12 * np.abs(K0).max())
+    system = cable_system(kind=roped)  # the compressed state once more, the rope told not to push
+    system.load("rope").rod[:] = False
+    slack = system.evaluate(system.state(X))[0]
+    assert np.abs(slack - R1).max() > 0.1 * np.abs(R1).max()  # the push is no round-off
 
 
 def test_a_bending_line_in_a_junction_network_runs_compiled_as_in_python():

@@ -25,8 +25,9 @@ from rope_cases import rope_state, rope_system
 from test_loads import (ROPE, assert_tangent_matches_finite_differences, line_state, soil_state, soil_system,
                         system_with_all_loads)
 
-#: the rope's laws besides its table with a constant BA (``tests/rope_cases.py``), and MoorDyn-C's slack law
-ROPE_VARIANTS = ["damping_table", "viscoelastic", "load_dependent", "syrope", "syrope_exp", "slack"]
+#: the rope's laws besides its table with a constant BA (``tests/rope_cases.py``), MoorDyn-C's slack law, and
+#: the table on a line that bends, compressed (a rod pushes: its law carried into compression at the slope EA)
+ROPE_VARIANTS = ["damping_table", "viscoelastic", "load_dependent", "syrope", "syrope_exp", "slack", "rod"]
 
 #: every catalog load, the two that see the current once more in a current varying with depth, the
 #: contact and its friction with the seabed's damper acting on points moving out too, in waves (the
@@ -68,7 +69,10 @@ def one_load_system(name, order):
     if name == "bending" and order != "hermite":
         pytest.skip("bending needs Hermite elements (a line type with EI > 0 is refused on Lagrange ones)")
     if name == "rope":
-        system = rope_system("table" if variant in ("", "slack") else variant, order, slack=variant == "slack")
+        if variant == "rod" and order != "hermite":
+            pytest.skip("a line type that bends needs Hermite elements")
+        system = rope_system("table" if variant in ("", "slack", "rod") else variant, order, slack=variant == "slack",
+                             EI=BENT_ROPE.EI if variant == "rod" else 0.0)
         system.loads = [system.load("rope")]
         return system
     profile = variant in ("profile", "waves-profile")
@@ -102,7 +106,7 @@ def one_load_system(name, order):
 def load_state(system, name, rng):
     """(state, X, V, A) of a test state for load ``name``, away from its kinks."""
     if name.startswith("rope"):
-        X, V, A = rope_state(system, rng)
+        X, V, A = rope_state(system, rng, 0.99 if name == "rope+rod" else 1.02)
         return system.state(X, V, A), X, V, A
     return soil_state(system, rng) if name == "soil" else line_state(system, rng, LAW)
 

@@ -201,3 +201,27 @@ def test_junction_groups_step_with_every_scheme_and_adaptive_steps(tmp_path, int
     for column in range(1, ref.shape[1]):
         values = np.interp(ref[:, 0], run[:, 0], run[:, column])
         assert np.max(np.abs(values - ref[:, column])) <= 0.01 * np.abs(ref[:, 1:]).max()
+
+
+def test_the_tripod_on_its_hinges_holds_still_with_either_integrator():
+    """MoorDyn's tripod.txt as it stands (EI > 0: eleven Hermite strings, eight hinges and the junction
+    of the legs, tests/test_moordyn_files.py): from its statics, in still water and with nothing moving
+    its ends, both integrators' compiled junction steps keep every node where the statics put it
+    (1e-6 m over 0.1 s: the statics' balance to 1e-8 of the weight, nothing else acts)."""
+    from pathlib import Path
+
+    scene = load_scene(Path(__file__).parent / "data" / "moordyn" / "tripod.txt")
+    assert len(scene.lines) == 11 and all(line.hermite for line in scene.lines)
+    states = None
+    for scheme in ("bdf2", "generalized-alpha"):
+        systems = [build_system(scene, line) for line in dynamic_lines(scene)]
+        if states is None:
+            states, _ = start_states(scene, systems=systems)
+        options = {**integrator_options(scene.solver), "compiled": True}
+        integrators = [INTEGRATORS[scheme](s, X, boundary_path(scene, line), dt=0.01,
+                                           anchor=anchor_path(scene, line), **options)
+                       for s, line, X in zip(systems, scene.lines, states)]
+        steps, = junction_groups(scene, integrators)
+        steps.march(0.01 * np.arange(1, 11))
+        for integ, X0 in zip(integrators, states):
+            assert np.abs(integ.X - X0).max() < 1e-6

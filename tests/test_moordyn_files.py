@@ -91,12 +91,13 @@ def test_a_riser_between_two_fixed_points_in_a_current_profile(tmp_path, capsys)
     np.testing.assert_allclose([entry["nodes"][0], entry["nodes"][-1]], [[-21.0425, 0, -10], [0, 0, -1]], atol=1e-9)
 
 
-def test_lines_meeting_at_free_points_read_into_strings_and_a_junction():
-    """tripod.txt: eleven lines, free points joining two line ends become joints of four strings
-    (nodeTether + nodeFloat up to a free end, three anchor legs of three lines each), and point 3,
-    where four string ends meet, is a junction (its statics: the next test), which a run steps with
-    any integrator (check_no_coupling refuses only free bodies)."""
-    scene = load_scene(data("tripod.txt"))
+def test_lines_meeting_at_free_points_read_into_strings_and_a_junction(tmp_path):
+    """tripod.txt with its EI zeroed (cables): free points joining two line ends become joints of four
+    strings (nodeTether + nodeFloat up to a free end, three anchor legs of three lines each), and point
+    3, where four string ends meet, is a junction (its statics: the next test), which a run steps with
+    any integrator (check_no_coupling refuses only free bodies). As written (EI > 0) its points are
+    hinges: eleven strings, every free point joining two of them a junction, point 2 the float's free end."""
+    scene = load_scene(without_ei("tripod.txt", tmp_path))
     assert sorted(line.name for line in scene.lines) == ["line11+10+9", "line2+1", "line5+4+3", "line8+7+6"]
     points, bodies = kinds(scene)
     assert [name for name, kind in points.items() if kind == "fixed"] == ["point6", "point9", "point12"]
@@ -105,6 +106,10 @@ def test_lines_meeting_at_free_points_read_into_strings_and_a_junction():
     assert all(line.ends[1] == "point3" and line.prescribed == (True, False) for line in legs)
     check_no_coupling(scene)
     check_no_coupling(replace(scene, solver=replace(scene.solver, integrator="generalized-alpha", adaptive=True)))
+    hinged = load_scene(data("tripod.txt"))
+    assert sorted(line.name for line in hinged.lines) == sorted(f"line{k}" for k in range(1, 12))
+    assert coupling(hinged.lines, hinged.points, hinged.bodies) == (
+        sorted(f"point{k}" for k in (1, 3, 4, 5, 7, 8, 10, 11)), [])
 
 
 def without_ei(name, tmp_path):
@@ -124,7 +129,7 @@ def without_ei(name, tmp_path):
 
 
 def test_tripod_statics_converge_with_the_float_lying_at_its_waterline(tmp_path, capsys):
-    """tripod.txt, its lines cables (EI zeroed: ``test_tripod_with_its_ei_does_not_converge``), in
+    """tripod.txt, its lines cables (EI zeroed; as written: ``test_tripod_with_its_ei_converges_with_its_float_standing_on_its_hinge``), in
     statics: the float (EA 2.2e9 N on 0.21 m elements) on a free end starts risen from the junction
     to where it floats (``cablefem.statics.hang``), and continuation on the axial stiffness settles it
     there, where Newton alone finds a basin of micrometres; at each move of the junction the string is
@@ -146,14 +151,28 @@ def test_tripod_statics_converge_with_the_float_lying_at_its_waterline(tmp_path,
     assert string["fairlead_tension"] < 1e-3 * string["anchor_tension"]  # its free end
 
 
-@pytest.mark.xfail(strict=True, reason="a hinge between lines that bend is not built: MoorDyn's points pass no "
-                   "moment, cablefem's series points make one string with a continuous tangent")
-def test_tripod_with_its_ei_does_not_converge(tmp_path, capsys):
-    """tripod.txt as it stands: its line types have EI > 0, so its lines are read on Hermite elements
-    and the tether and the float (EI 9.3e7 N m^2 on 0.63 m) are one string through point 1, whose
-    tangent is continuous there (MoorDyn's point 1 is a hinge): the float cannot lie on the surface
-    above a standing tether, and the statics stops (relative residual 1.02 after 1250 iterations)."""
-    static_json(data("tripod.txt"), tmp_path, capsys)
+def test_tripod_with_its_ei_converges_with_its_float_standing_on_its_hinge(tmp_path, capsys):
+    """tripod.txt as it stands: its line types have EI > 0, so its lines are on Hermite elements and its
+    free points are hinges (MoorDyn's points pass no moment): each line its own string, each point
+    joining two of them a junction. The float (EI 9.3e7 N m^2, 0.63 m) starts standing straight on its
+    hinge (point 1) and stays there; in still water nothing pulls sideways, so the anchors' horizontal
+    forces cancel (1e-6 of their size), the tether and the float stand vertical above point 3 (the
+    hinge carries no moment, so neither bends: the curvature is round-off) and the float's free end
+    carries nothing."""
+    solved = static_json(data("tripod.txt"), tmp_path, capsys)
+    points = solved["points"]
+    anchors = np.array([points[name]["force"] for name in ("point6", "point9", "point12")])
+    horizontal = anchors[:, :2]
+    assert np.linalg.norm(horizontal.sum(axis=0)) <= 1e-6 * np.abs(horizontal).max()
+    lines = {line["name"]: line for line in solved["lines"]}
+    junction = np.array(points["point3"]["position"])
+    for name in ("line1", "line2"):  # the float and the tether
+        nodes = np.array(lines[name]["nodes"])
+        np.testing.assert_allclose(nodes[:, :2], np.tile(junction[:2], (len(nodes), 1)), atol=1e-9)
+        assert max(lines[name]["curvature"]) < 1e-9
+    float_nodes = np.array(lines["line1"]["nodes"])
+    assert float_nodes[-1, 2] - float_nodes[0, 2] == pytest.approx(0.63, rel=1e-6)  # standing, stretched 1e-7
+    assert lines["line1"]["fairlead_tension"] < 1e-6 * lines["line1"]["anchor_tension"]  # its free end
 
 
 def test_a_free_body_reads_solves_in_statics_and_is_refused_only_in_a_run(tmp_path, capsys):

@@ -39,12 +39,14 @@ class Rope:
     """The axial laws of a line's elements: ``laws`` (nel,) AxialLaw or None (an element the
     tension load carries), ``EA`` (nel,) their reference stiffness [N] (the slack stiffness, and the
     slope of a push), ``slack_damping`` (nel,) MoorDyn-C's slack law, ``initial`` (nel, 2) SYROPE's
-    initial highest and present mean tension (Tmax0, Tmean0) [N] (0 elsewhere)."""
+    initial highest and present mean tension (Tmax0, Tmean0) [N] (0 elsewhere), ``rod`` (nel,) the
+    elements that push (a line type that bends: its law carried into compression at the slope EA,
+    as ``Tension``'s rod)."""
 
     name = "rope"
     rule = "reduced"
 
-    def __init__(self, laws, EA, slack_damping=None, initial=None):
+    def __init__(self, laws, EA, slack_damping=None, initial=None, rod=None):
         self.laws = list(laws)
         nel = len(self.laws)
         self.EA = np.asarray(EA, dtype=float)[:, None]
@@ -53,6 +55,7 @@ class Rope:
         self.initial = np.zeros((nel, 2)) if initial is None else np.asarray(initial, dtype=float)
         self.kind = np.array([0 if law is None else LAWS[law.kind] for law in self.laws])
         self.compression = False  # the statics' start-up aid, as ``Tension.compression``
+        self.rod = np.zeros((nel, 1), bool) if rod is None else np.asarray(rod, dtype=bool)[:, None]
 
     def initial_history(self, state):
         """SYROPE's initial condition: the highest mean tension Tmax0 and the slow strain of the mean
@@ -229,7 +232,7 @@ class Rope:
         rate = np.einsum("ceq,ceq->eq", t, dv) if dv is not None else np.zeros_like(e)
         p = self._parts(e, rate, state)
         active_law = (self.kind != 0)[:, None]
-        extend = np.full(e.shape, self.compression)
+        extend = np.broadcast_to(self.rod | self.compression, e.shape)
         elastic_on = (e > 0.0) | extend
         Te = np.where(elastic_on, p["Te"], 0.0)
         total = Te + p["Td"]
@@ -266,7 +269,7 @@ class Rope:
         """Strain energy density [J/m] (nel, nq) of the relaxed elastic part: int_0^e T de of the
         table, EA_s e^2 / 2 of the viscoelastic rope, the SYROPE curve of the committed peak."""
         e = np.linalg.norm(state.dr, axis=0) - 1.0
-        out = np.where(e < 0.0, 0.5 * self.EA * e * e, 0.0) if self.compression else np.zeros_like(e)
+        out = np.where((e < 0.0) & (self.rod | self.compression), 0.5 * self.EA * e * e, 0.0)
         for i, law in enumerate(self.laws):
             if law is None:
                 continue
@@ -291,7 +294,7 @@ class Rope:
         Tm = float(np.interp(slow, z, y)) if slow > z[0] else 0.0
         xm = float(np.interp(slow, z, x)) if slow > z[0] else slow
         b = law.damping / (law.damping + law.dynamic_damping) * (law.dynamic_EA + law.dynamic_slope * Tm)
-        if self.compression:
+        if self.compression or self.rod[i, 0]:
             return Tm * e + 0.5 * b * (e - xm) ** 2 - 0.5 * b * xm ** 2
         if self.slack_damping[i, 0]:
             return Tm * max(e, 0.0) + 0.5 * b * (e - xm) ** 2 - 0.5 * b * xm ** 2
@@ -305,7 +308,7 @@ class Rope:
         record = {name: np.zeros((nel,) + (tuple(shape[0]) if shape else ())) for name, _, *shape in PARAMS}
         record["law"] = self.kind.astype(np.uint8)
         record["EA"] = self.EA[:, 0]
-        record["pushes"] = np.full(nel, self.compression)
+        record["pushes"] = self.rod[:, 0] | self.compression
         record["slack_damping"] = self.slack_damping[:, 0]
         for i, law in enumerate(self.laws):
             if law is None:
@@ -443,11 +446,12 @@ def rope_hold(base, state, hold, p, again):
 
 def build(setting):
     """A line with a line type of its own law gets the rope on those elements (the tension load
-    carries EA = 0 there)."""
+    carries EA = 0 there); a line type that bends pushes."""
     laws = setting.props.get("axial")
     if laws is None or all(law is None for law in laws):
         return None
-    return Rope(laws, setting.props["EA"], setting.props["damping_when_slack"], setting.props["syrope_initial"])
+    return Rope(laws, setting.props["EA"], setting.props["damping_when_slack"], setting.props["syrope_initial"],
+                rod=setting.props["EI"] > 0.0)
 
 
 #: the compiled parameters per element: the law, its reference EA, the two slack switches, the curve

@@ -14,11 +14,14 @@ about the x, y', z'' axes, each positive by the right-hand rule: roll turns +y t
 
 Topology (``strings``): lines joined through free points that join exactly two line ends (a
 clump weight, a buoy, a connector in series) are one finite element line, a *string*, with the
-point as a ``Joint`` at the vertex between them: one banded block, solved as one line. A free
-point at the end of one line only is a free end of its string. What remains are the string ends
+point as a ``Joint`` at the vertex between them: one banded block, solved as one line. Where one
+of the two lines bends (Hermite elements) the point is a hinge, as MoorDyn's points are: the lines
+share its position, not their tangents, so each is a string of its own and the point a junction
+(a welded joint is one line of several segments). A free point at the end of one line only is a
+free end of its string. What remains are the string ends
 at fixed and coupled points and at points of fixed and coupled bodies (prescribed paths,
-``EndPath``), and the *coupling* unknowns: free points where three or more line ends meet and
-free bodies, which ``cablefem.statics.network`` solves for in statics.
+``EndPath``), and the *coupling* unknowns: free points where three or more line ends meet (or
+two, at a hinge) and free bodies, which ``cablefem.statics.network`` solves for in statics.
 """
 
 import math
@@ -27,6 +30,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from cablefem.errors import InputError
+from cablefem.model.clamps import check_clamps_do_not_turn, check_no_free_body_clamps
 from cablefem.model.line import Joint, Line
 from cablefem.model.motion import FairleadPath, body_motion
 
@@ -287,8 +291,10 @@ def strings(lines, points, bodies, where=lambda key: key):
     for name, point in points.items():
         if name not in at_point:
             raise InputError("no line uses this point", key=where(f"points.{name}"))
+    check_no_free_body_clamps(lines, points, bodies, where)
     series = {name for name, ends in at_point.items()
-              if points[name].kind == "free" and points[name].body is None and len(ends) == 2}
+              if points[name].kind == "free" and points[name].body is None and len(ends) == 2
+              and not any(lines[index].hermite for index, _ in ends)}  # a point is a hinge on lines that bend
     used, out = set(), []
     for start in range(len(lines)):
         if start in used:
@@ -336,17 +342,15 @@ def _string(parts, points, bodies, at_point):
         if kind == "free" and points[name].joint.loaded:  # a free end carries its point
             joints.append((0 if e == 0 else n, points[name].joint))
     prescribed = tuple(kind not in ("free", "junction") for kind in kinds)
-    # one element kind along a string: Hermite if any of its lines bends (a chain on Hermite elements
-    # is the chain with EI = 0); the tangent is continuous through the series points between them
-    element = "hermite" if any(part.hermite for part in parts) else parts[0].element
     return Line("+".join(p.name for p in parts), parts[0].anchor, parts[-1].fairlead, tuple(segments),
-                parts[0].order, joints=tuple(joints), prescribed=prescribed, ends=ends, element=element,
+                parts[0].order, joints=tuple(joints), prescribed=prescribed, ends=ends, element=parts[0].element,
                 tangents=(parts[0].tangents[0], parts[-1].tangents[1]))
 
 
 def coupling(lines, points, bodies):
-    """The coupling unknowns of strings ``lines``: the junction points (free points joining three
-    or more string ends, or one on a free body) and the free bodies, as (points, bodies) name lists."""
+    """The coupling unknowns of strings ``lines``: the junction points (free points joining two or
+    more string ends: three or more, or two at a hinge; or one on a free body) and the free bodies,
+    as (points, bodies) name lists."""
     junctions = sorted({name for line in lines for name, given in zip(line.ends, line.prescribed)
                         if name is not None and not given and not _free_end(line, name, lines)})
     free_bodies = sorted(name for name, body in bodies.items() if body.kind == "free")
@@ -368,8 +372,10 @@ def point_position(point, bodies):
 
 def check_no_coupling(scene):
     """InputError if ``scene`` has free bodies, whose dynamics are not solved yet (their statics
-    are: ``cablefem.statics.network``, ``cablefem static``); junctions step in a
-    ``cablefem.dynamics.group.Group``, with any integrator."""
+    are: ``cablefem.statics.network``, ``cablefem static``), or a clamp on a body that turns
+    (``check_clamps_do_not_turn``); junctions step in a ``cablefem.dynamics.group.Group``, with any
+    integrator."""
+    check_clamps_do_not_turn(scene)
     _, free_bodies = coupling(scene.lines, scene.points, scene.bodies)
     if free_bodies:
         what = ", ".join(f"body '{name}' (free)" for name in free_bodies)

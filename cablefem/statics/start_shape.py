@@ -33,7 +33,7 @@ import numpy as np
 from cablefem.fem import clamp
 from cablefem.statics.catenary import elastic_catenary, inclined_catenary
 from cablefem.geometry import Plane
-from cablefem.statics.hang import free_hang
+from cablefem.statics.hang import free_end, free_hang
 from cablefem.model.line import Line
 from cablefem.loads.gravity import submerged_fraction
 
@@ -76,8 +76,15 @@ def hangs(system):
 
 
 def _hang(system):
-    """The hang (or rise) of a line with one free end (``free_hang``), or None."""
-    return free_hang(system.line, system.seabed, system.environment, float_level(system.weight))
+    """The hang (or rise) of a line with one free end (``free_hang``), or None. A line that bends
+    rises straight: a float on a hinge stands above it (tripod.txt's), where lying along the level
+    it floats at would bend it through a right angle at the start."""
+    level = float_level(system.weight)
+    line = system.line
+    if np.isfinite(level) and any(seg.type.EI > 0.0 for seg in line.segments):
+        held = line.anchor if free_end(line) == 1 else line.fairlead
+        level = max(level, float(held[2]) + 2.0 * line.unstretched_length)
+    return free_hang(line, system.seabed, system.environment, level)
 
 
 def _shape(system, weight, EA):
