@@ -36,7 +36,7 @@ Measured on MoorDyn v2.7.1's tests/Mooring (the moordyn 2.7 wheel; 2 shared core
   | file | difference | why |
   |---|---|---|
   | BeamSimplySupported.txt | 22 % | two quantities: MoorDyn-C's node tension is its end segment's axial tension (6332 N), cablefem's end tension the end force's magnitude, the beam's shear included (7743 N = |(5993, 4903)| N). The axial tension inside the line is 6010 N in cablefem, 6330 N in MoorDyn-C at its 19 segments; a pinned beam under its weight whose ends cannot move apart carries H = 6012.9 N (EI w'''' - H w'' = w with H = EA / 2L int w'^2 dx, solved to 1e-6) |
-  | body_tests/bodyDrag.txt | 232 % | a free body: cablefem's static equilibrium against MoorDyn-C's dynamic relaxation, not yet explained |
+  | body_tests/bodyDrag.txt | 232 % | TmaxIC 0: MoorDyn-C's tension is that of the file's pose, the free body 5 m above its anchor on a 4.5 m spring, not an equilibrium; run on, MoorDyn-C's body falls and settles where cablefem's statics hangs it, 10.77 m down at pitch -90 deg, to 1e-4 m (tests/test_body_dynamics.py) |
   | syrope/exp_wc, quadratic_wc | 89 %, 35 % | MoorDyn-C drops owc.dat's (0, 0) row and starts its working curves at the next row (below) |
   | wavekin_2.txt, wavekin_3.txt, wavekin_7.txt | 2.8 %, 2.8 %, 2.6 % | TmaxIC 0: MoorDyn-C starts from its initial shape without relaxing it (the _curr2 files, with TmaxIC 200 and the fairlead 2 m higher, agree to 0.41 %) |
 
