@@ -413,12 +413,12 @@ def test_a_clamp_on_a_body_that_turns_or_is_free_is_refused_with_its_key(tmp_pat
     motion turns it is refused in a run, naming the body's motion (its statics, at rest, solve); one on a
     free body is refused when the scene is read (the clamp's moment is not in the body's balance). A
     body that only translates keeps the clamp's direction, as a moving fairlead does."""
-    from cablefem.model.network import check_no_coupling
+    from cablefem.model.network import check_steppable
 
-    check_no_coupling(load_scene(write(tmp_path, ON_A_BODY.replace("PITCH", "0.0"))))
+    check_steppable(load_scene(write(tmp_path, ON_A_BODY.replace("PITCH", "0.0"))))
     turning = load_scene(write(tmp_path, ON_A_BODY.replace("PITCH", "0.05")))
     with pytest.raises(InputError, match="whose motion turns it .* a clamp that turns with its body is not built") as error:
-        check_no_coupling(turning)
+        check_steppable(turning)
     assert error.value.key == "bodies.vessel.motion"
     free = ON_A_BODY.replace('kind = "coupled"', 'kind = "free"\nmass = 1e5\ninertia = [1e6, 1e6, 1e6]').replace(
         "[bodies.vessel.motion]\nkind = \"harmonic\"\namplitude = [1.0, 0.0, 0.0, 0.0, PITCH, 0.0]\nperiod = 10.0\n", "")

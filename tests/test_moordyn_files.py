@@ -1,13 +1,11 @@
 """MoorDyn's own input files (tests/data/moordyn, copied from MoorDyn's repository) read as a MoorDyn
 user would: each into the network it describes (points, bodies, strings and their kinds); the ones
 whose strings end at fixed, coupled and body points solve in statics, and a free body too; the ones
-with junctions or free bodies read, and a run refuses them only where its steps are missing
-(``network.check_no_coupling``). Also: MoorDyn-C's v1 LINE TYPES layout read by position, the
+with junctions or free bodies read, and a run steps them. Also: MoorDyn-C's v1 LINE TYPES layout read by position, the
 Currents option and [environment] current_profile, body motions given by a TOML that wraps a file."""
 
 import json
 import os
-from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -15,7 +13,7 @@ import pytest
 from cablefem.cli import main
 from cablefem.errors import InputError
 from cablefem.io import load_scene
-from cablefem.model.network import check_no_coupling, coupling
+from cablefem.model.network import coupling
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "moordyn")
 
@@ -95,8 +93,9 @@ def test_lines_meeting_at_free_points_read_into_strings_and_a_junction(tmp_path)
     """tripod.txt with its EI zeroed (cables): free points joining two line ends become joints of four
     strings (nodeTether + nodeFloat up to a free end, three anchor legs of three lines each), and point
     3, where four string ends meet, is a junction (its statics: the next test), which a run steps with
-    any integrator (check_no_coupling refuses only free bodies). As written (EI > 0) its points are
-    hinges: eleven strings, every free point joining two of them a junction, point 2 the float's free end."""
+    any integrator (``check_steppable`` refuses only a clamp on a body that turns). As written (EI > 0)
+    its points are hinges: eleven strings, every free point joining two of them a junction, point 2 the
+    float's free end."""
     scene = load_scene(without_ei("tripod.txt", tmp_path))
     assert sorted(line.name for line in scene.lines) == ["line11+10+9", "line2+1", "line5+4+3", "line8+7+6"]
     points, bodies = kinds(scene)
@@ -104,8 +103,8 @@ def test_lines_meeting_at_free_points_read_into_strings_and_a_junction(tmp_path)
     assert coupling(scene.lines, scene.points, scene.bodies) == (["point3"], [])
     legs = [line for line in scene.lines if line.name != "line2+1"]
     assert all(line.ends[1] == "point3" and line.prescribed == (True, False) for line in legs)
-    check_no_coupling(scene)
-    check_no_coupling(replace(scene, solver=replace(scene.solver, integrator="generalized-alpha", adaptive=True)))
+    check_steppable(scene)
+    check_steppable(replace(scene, solver=replace(scene.solver, integrator="generalized-alpha", adaptive=True)))
     hinged = load_scene(data("tripod.txt"))
     assert sorted(line.name for line in hinged.lines) == sorted(f"line{k}" for k in range(1, 12))
     assert coupling(hinged.lines, hinged.points, hinged.bodies) == (
@@ -175,10 +174,11 @@ def test_tripod_with_its_ei_converges_with_its_float_standing_on_its_hinge(tmp_p
     assert lines["line1"]["fairlead_tension"] < 1e-6 * lines["line1"]["anchor_tension"]  # its free end
 
 
-def test_a_free_body_reads_solves_in_statics_and_is_refused_only_in_a_run(tmp_path, capsys):
+def test_a_free_body_reads_solves_in_statics_and_runs(tmp_path, capsys):
     """lines_body.txt with its body made free (mass, inertia, volume): read with MoorDyn's CG (one
     number: its z) and inertia (one number: all three); `cablefem static` finds where the hanging
-    chain's pull balances its net buoyancy (rho V - M) g (1e-6); a run refuses it (check_no_coupling)."""
+    chain's pull balances its net buoyancy (rho V - M) g (1e-6); a run starts there and stays (its pose
+    columns at the statics' pose to 1e-6 m after two steps)."""
     text = open(data("lines_body.txt"), encoding="utf-8").read()
     row = "1    Coupled     0.0    0.0   -35   0       0      0      0     -35      0        0       0      0"
     path = tmp_path / "free_body.txt"
@@ -190,11 +190,15 @@ def test_a_free_body_reads_solves_in_statics_and_is_refused_only_in_a_run(tmp_pa
     np.testing.assert_allclose(body.inertia, [1e8, 1e8, 1e8])
     np.testing.assert_allclose(body.rotation, [0, 0, np.radians(30)])
     assert coupling(scene.lines, scene.points, scene.bodies)[1] == ["body1"]
-    with pytest.raises(InputError, match="body 'body1' \\(free\\).*not solved yet"):
-        check_no_coupling(scene)
     solved = static_json(path, tmp_path, capsys)["bodies"]["body1"]
     net_buoyancy = (1025.0 * 2000.0 - 2e6) * 9.80665
     np.testing.assert_allclose(solved["force"], [0.0, 0.0, -net_buoyancy], rtol=0, atol=1e-6 * net_buoyancy)
+    from cablefem.runs.run import run_scene
+
+    summary = run_scene(scene, tmp_path / "run", duration=2 * scene.solver.dt, dt=scene.solver.dt)
+    assert summary["completed"]
+    table = np.genfromtxt(tmp_path / "run" / "tensions.csv", delimiter=",", names=True)
+    np.testing.assert_allclose([table[f"bodybody1{axis}"][-1] for axis in "xyz"], solved["position"], atol=1e-6)
 
 
 def test_zero_length_rods_of_a_moordyn_file_are_massless_points_joining_their_lines():

@@ -67,9 +67,17 @@ class Group:
             for m in self.members:
                 m.A[...] = 0.0
                 m.residual_rows = None
+        self.packer = self.make_packer()
+
+    def remade(self, members):
+        """The same group over ``members`` (one string made again: a line end let go)."""
+        return Group(members, self.junctions)
+
+    def make_packer(self):
+        """The compiled steps' ``Packer`` of this group, or None (the Python ops)."""
         from cablefem.compiled.problem import Packer  # numba's kernels only where a line has them
 
-        self.packer = Packer.for_group(self)
+        return Packer.for_group(self)
 
     @property
     def settings(self):

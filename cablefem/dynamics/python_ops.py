@@ -49,19 +49,28 @@ def _size(g, steps):
                for step, scale in zip(steps, g.increment_scale))
 
 
-def increment(g, refactor):
-    """Every string's Newton step into its ``newton_step`` (condensed onto the junctions); the largest
-    entry (``_size``), NaN when a tangent is singular or a step not finite."""
+def member_steps(g, refactor):
+    """Every string's own Newton step y (its coupling ends free) and, with ``refactor``, its columns
+    at its coupling ends (``Group.columns``); None when a tangent is singular or a step not finite."""
     steps = []
     for k, m in enumerate(g.members):
         step = m.increment(m.tangent, m.rows, refactor)
         if step is None:
-            return float("nan")
+            return None
         if refactor and g.ends[k]:
             m.junction_columns = g.columns(k)
             if m.junction_columns is None:
-                return float("nan")
+                return None
         steps.append(step)
+    return steps
+
+
+def increment(g, refactor):
+    """Every string's Newton step into its ``newton_step`` (condensed onto the junctions); the largest
+    entry (``_size``), NaN when a tangent is singular or a step not finite."""
+    steps = member_steps(g, refactor)
+    if steps is None:
+        return float("nan")
     if g.junctions:
         steps = g.condense(steps)
         if steps is None or not all(np.all(np.isfinite(step)) for step in steps):

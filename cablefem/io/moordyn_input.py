@@ -13,7 +13,7 @@ Mapping (each conversion checked against the MoorDyn 2.7 library, docs/scene.md)
   MoorDyn line a ``Line`` between two of them; ``network.strings`` joins lines through free points
   that join exactly two line ends into ONE multi-segment line named ``line1+2``, its most fixed end
   first. Junctions of three or more line ends and free bodies are read as they are: the statics
-  solve them (``cablefem.statics.network``), a run refuses what it cannot step (``network.check_no_coupling``);
+  solve them (``cablefem.statics.network``), a run steps them (``cablefem.dynamics.body_group``);
 - ``Currents 1``: the steady profile of ``current_profile.txt`` beside the file (``io.currents``);
   ``Currents 2`` and ``5``: a current varying in time (and with ``5`` in x and y) from
   ``current_profile_dynamic.txt`` or ``current_profile_4d.txt``, which rides on the scene's Sea

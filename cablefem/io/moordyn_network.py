@@ -4,8 +4,9 @@ as MoorDyn-C reads them (``MoorDyn2.cpp``: ``readBody``, the POINTS rows, the LI
 - BODIES (ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG I Volume CdA Ca): Fixed/Anchor/Fix -> fixed,
   Coupled/Vessel/Ves/Cpld -> coupled (at rest where the file puts it; it moves with a motion only a
   TOML that wraps the file gives), Free -> free; angles in degrees; CG one number (its z) or x|y|z, I
-  one number (all three) or three, the centre of buoyancy at the reference point. A body's CdA and
-  Ca (MoorDyn's body drag and added mass) are not modelled: noted.
+  one number (all three) or three, the buoyancy at the centre of gravity (MoorDyn-C's
+  ``Body::doRHS``); a free body's CdA (1, 2, 3 or 6 entries) and Ca (1 or 3, translational) as
+  MoorDyn-C reads them, for its drag and added mass in a run.
 - POINTS (ID Attachment X Y Z M V CdA CA, or with FX FY FZ before CdA as MoorDyn-C reads rows of 12):
   Fixed/Anchor/Fix, Coupled/Vessel/Ves/Cpld/Fairlead, Free/Point/Connect/Con, BodyN (fixed to body
   N, X Y Z in its frame, relative to its reference point). FX FY FZ: a steady external force [N] on a
@@ -79,6 +80,17 @@ def _row_id(section, what, number, fields, seen):
     return key, int(fields[0])
 
 
+def _six_drag(drag):
+    """A body's CdA entries (1, 2, 3 or 6) as six: one for all, (translation, rotation), (x, y, z) for
+    both, or all six (MoorDyn-C's reading; with 3 or 6 entries MoorDyn-C v2.7 leaves the surge entry
+    zero, an indexing slip in MoorDyn2.cpp that is not copied here)."""
+    if len(drag) == 1:
+        return drag * 6
+    if len(drag) == 2:
+        return [drag[0]] * 3 + [drag[1]] * 3
+    return drag * 2 if len(drag) == 3 else drag
+
+
 def read_bodies(rows, notes):
     """BODIES rows as Bodies: dict body ID -> (row number, Body)."""
     bodies = {}
@@ -93,12 +105,14 @@ def read_bodies(rows, notes):
         volume = value(fields[11], number, f"{key}.Volume", v.limited(v.non_negative, "volume"))
         drag = _split(fields[12], (1, 2, 3, 6), number, f"{key}.CdA", _AREA)
         added = _split(fields[13], (1, 3), number, f"{key}.Ca", _COEFFICIENT)
-        if any(drag) or any(added):
-            notes.append(f"BODIES.{bid}: CdA and Ca ignored (cablefem's bodies have no drag or added mass yet)")
-        try:
+        if kind != "free" and (any(drag) or any(added)):
+            notes.append(f"BODIES.{bid}: CdA and Ca of a {kind} body ignored (its motion is given)")
+        cg = [0.0, 0.0, cg[0]] if len(cg) == 1 else cg
+        extra = {"CdA": _six_drag(drag), "Ca": list(added) * 3 + [0.0] * 3 if len(added) == 1 else list(added) + [0.0] * 3
+                 } if kind == "free" else {}
+        try:  # buoyancy acts at the centre of gravity, as MoorDyn-C's Body::doRHS has it
             body = Body(body_name(bid), kind, pose[:3], np.radians(pose[3:]), mass=mass,
-                        inertia=inertia * 3 if len(inertia) == 1 else inertia,
-                        cg=[0.0, 0.0, cg[0]] if len(cg) == 1 else cg, volume=volume)
+                        inertia=inertia * 3 if len(inertia) == 1 else inertia, cg=cg, cb=cg, volume=volume, **extra)
         except InputError as error:
             raise InputError(error.reason, key=at(number, key)) from None
         bodies[bid] = (number, body)

@@ -25,6 +25,24 @@ BODY_KEYS = {"kind": v.choice(("fixed", "coupled", "free")), "position": _COORDI
              "waterplane_area": v.limited(v.non_negative, "area"),
              "force": v.limited(v.vector3, "force"), "moment": v.limited(v.vector3, "moment"),
              "motion": v.table}
+
+
+def _six(check):
+    """One number (all six axes) or six: surge, sway, heave, roll, pitch, yaw (a free body's CdA, Ca)."""
+
+    def convert(value, key):
+        if isinstance(value, (list, tuple)):
+            if len(value) != 6:
+                raise InputError(f"expected one number or 6 (surge, sway, heave, roll, pitch, yaw), got {value!r}",
+                                 key=key)
+            return tuple(check(item, f"{key}[{i}]") for i, item in enumerate(value))
+        return (check(value, key),) * 6
+
+    return convert
+
+
+BODY_KEYS["CdA"] = _six(v.limited(v.non_negative, "area"))
+BODY_KEYS["Ca"] = _six(v.limited(v.non_negative, "coefficient"))
 BODY_MOTION_KINDS = ("fixed", "harmonic", "table")
 BODY_MOTION_KEYS = {"fixed": (), "harmonic": ("amplitude", "period", "phase_deg", "offset", "ramp"),
                     "table": ("file", "ramp", "interpolation")}
@@ -77,6 +95,10 @@ def read_bodies(raw, folder):
             for key in ("mass", "inertia"):
                 if key not in values:
                     raise InputError("missing: a free body needs it", key=f"{prefix}.{key}")
+        for key in ("CdA", "Ca"):
+            if key in values and kind != "free":
+                raise InputError(f"only a free body has drag and added mass (this one is {kind}: its motion is "
+                                 "given)", key=f"{prefix}.{key}")
         motion = values.pop("motion", None)
         if motion is not None and kind != "coupled":
             raise InputError(f"only a coupled body has a motion (this one is {kind})", key=f"{prefix}.motion")

@@ -21,7 +21,8 @@ share its position, not their tangents, so each is a string of its own and the p
 free end of its string. What remains are the string ends
 at fixed and coupled points and at points of fixed and coupled bodies (prescribed paths,
 ``EndPath``), and the *coupling* unknowns: free points where three or more line ends meet (or
-two, at a hinge) and free bodies, which ``cablefem.statics.network`` solves for in statics.
+two, at a hinge) and free bodies, which ``cablefem.statics.network`` solves for in statics and
+``cablefem.dynamics.body_group`` steps in a run.
 """
 
 import math
@@ -93,9 +94,13 @@ class Body:
     reference point's z = 0; MoorPy's rM may stand for cb: buoyancy there gives the metacentric
     restoring moment), the ``waterplane_area`` [m^2] whose heave restoring force is
     -rho g A_wp z (MoorPy's AWP), and the steady external ``force`` (3,) [N] and ``moment`` (3,)
-    [N m, about the reference point] of an offset study. ``rod``: the ``cablefem.model.rod.Rod`` that
-    a free or pinned rod's body is (its own loads in place of mass, volume and waterplane:
-    ``cablefem.model.rod.rod_body``); ``rods``: the rods fixed on the body, ends in its frame."""
+    [N m, about the reference point] of an offset study; in a run its drag areas ``CdA`` (6,) [m^2]
+    (surge, sway, heave, then roll, pitch, yaw, in body axes: MoorDyn-C's drag 0.5 rho CdA |u| u on
+    the reference point's velocity relative to the current, and on the angular velocity) and added
+    mass coefficients ``Ca`` (6,) [-] (MoorDyn-C's rho V Ca about the reference point, body axes).
+    ``rod``: the ``cablefem.model.rod.Rod`` that a free or pinned rod's body is (its own loads in
+    place of mass, volume and waterplane: ``cablefem.model.rod.rod_body``); ``rods``: the rods fixed
+    on the body, ends in its frame."""
 
     name: str
     kind: str
@@ -112,12 +117,22 @@ class Body:
     motion: object = None
     rod: object = None
     rods: tuple = ()
+    CdA: np.ndarray = field(default_factory=lambda: np.zeros(6))
+    Ca: np.ndarray = field(default_factory=lambda: np.zeros(6))
 
     def __post_init__(self):
         key = f"bodies.{self.name}"
         object.__setattr__(self, "kind", _kind(self.kind, f"{key}.kind"))
         for name in ("position", "rotation", "inertia", "cg", "cb", "force", "moment"):
             object.__setattr__(self, name, _vector(getattr(self, name), 3, f"{key}.{name}"))
+        for name in ("CdA", "Ca"):
+            value = getattr(self, name)
+            if isinstance(value, (int, float)) and not isinstance(value, bool):  # one number for all six
+                value = [value] * 6
+            value = _vector(value, 6, f"{key}.{name}")
+            if np.any(value < 0.0):
+                raise InputError(f"must be >= 0, got {value.tolist()}", key=f"{key}.{name}")
+            object.__setattr__(self, name, value)
         for name in ("mass", "volume", "waterplane_area"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
@@ -370,17 +385,12 @@ def point_position(point, bodies):
     return body.position + rotation(body.rotation) @ point.position
 
 
-def check_no_coupling(scene):
-    """InputError if ``scene`` has free bodies, whose dynamics are not solved yet (their statics
-    are: ``cablefem.statics.network``, ``cablefem static``), or a clamp on a body that turns
-    (``check_clamps_do_not_turn``); junctions step in a ``cablefem.dynamics.group.Group``, with any
-    integrator."""
+def check_steppable(scene):
+    """InputError for what a run cannot step: a clamp on a body that turns
+    (``check_clamps_do_not_turn``). Junctions step in a ``cablefem.dynamics.group.Group`` and free
+    bodies in a ``cablefem.dynamics.body_group`` step, with any integrator; free and pinned rods are
+    refused by ``cablefem.model.rod.check_rods_in_run``."""
     check_clamps_do_not_turn(scene)
-    _, free_bodies = coupling(scene.lines, scene.points, scene.bodies)
-    if free_bodies:
-        what = ", ".join(f"body '{name}' (free)" for name in free_bodies)
-        raise InputError(f"{what}: the dynamics of a free body are not solved yet (`cablefem static` solves "
-                         "its equilibrium); for a run, make the body coupled or fixed", key="bodies")
 
 
 def junction_ends(lines, points, bodies):

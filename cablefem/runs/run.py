@@ -18,6 +18,7 @@ import time
 
 import numpy as np
 
+from cablefem.dynamics.body_group import body_groups
 from cablefem.dynamics.group import Group, junction_groups
 from cablefem.dynamics.integrator import Integrator
 from cablefem.dynamics.registry import INTEGRATORS, integrator_options
@@ -32,7 +33,7 @@ from cablefem.runs.bending_rows import BendingRows
 from cablefem.runs.failures import Failures
 from cablefem.runs.results import LineSampler, line_fields
 from cablefem.runs.surface import NAME as SURFACE, SurfaceFrames
-from cablefem.statics.scene import run_start
+from cablefem.statics.scene import network_start
 
 
 #: the files every run writes in its folder, beside its frames and their .pvd
@@ -96,8 +97,11 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
     if sea is not None:  # the free surface of an earlier run in waves
         remove_earlier_run(out_dir, SURFACE, files=())
     start = time.perf_counter()
+    free = [name for name, body in scene.bodies.items() if body.kind == "free"]
+    body_notes = [f"free bodies ({', '.join(free)}) feel the current, not the waves: their drag is on the current "
+                  "alone, without a wave force"] if sea is not None and free else []
     summary = {"scene": scene.name, "seabed": scene.seabed.describe(),
-               "notes": list(scene.notes) + setting_warnings(scene, dt), "dt": dt, "duration": duration,
+               "notes": list(scene.notes) + setting_warnings(scene, dt) + body_notes, "dt": dt, "duration": duration,
                **({"waves": sea.describe()} if sea is not None else {}),
                **({"current": water.current.describe()} if water is not None and water.current is not None else {})}
     integrators, outputs, status = [], {}, "completed"
@@ -112,11 +116,13 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
             raise write_failure(error, seabed_vtu) from None
         integrator_class = INTEGRATORS[solver.integrator]
         options = integrator_options(solver)
-        systems, states, summary["static_newton_iterations"] = run_start(scene)
+        systems, states, summary["static_newton_iterations"], network = network_start(scene)
         integrators += [integrator_class(system, X0, boundary_path(scene, line), dt=dt,
                                          anchor=anchor_path(scene, line), **options)
                         for system, line, X0 in zip(systems, scene.lines, states)]
-        groups = _groups(scene, integrators)
+        groups = _groups(scene, integrators, {} if network is None else network.poses)
+        if tracker.network is not None:
+            tracker.network.follow(groups)
         outputs["frames"] = TimeSeriesWriter(out_dir, scene.name)
         tracker.bending.attach(integrators)
         if sea is not None:
@@ -151,10 +157,10 @@ def remove_earlier_run(out_dir, name, files=RUN_FILES):
             os.unlink(path)
 
 
-def _groups(scene, integrators):
+def _groups(scene, integrators, poses):
     """The groups that step the lines (``cablefem.dynamics.group``): the strings that meet at junctions
-    together, every other line alone."""
-    groups = junction_groups(scene, integrators)
+    and free bodies together (the bodies from their statics' ``poses``), every other line alone."""
+    groups = body_groups(scene, integrators, poses) or junction_groups(scene, integrators)
     joined = {id(m) for group in groups for m in group.members}
     return groups + [Group([integ]) for integ in integrators if id(integ) not in joined]
 
@@ -201,7 +207,8 @@ def _advance(scene, integrators, groups, outputs, tracker, duration, dt, failure
         table.write(tracker.rows(rows))
         t = rows[-1][0]
         if t >= frame * every - near:
-            bodies = [(body_reference(scene.bodies[name], t), rows) for name, rows in body_marks]
+            stepped = tracker.network.stepped if tracker.network is not None else {}
+            bodies = [(body_reference(scene.bodies[name], t, stepped.get(name)), rows) for name, rows in body_marks]
             frames.write(t, polyline_mesh([line_fields(i.system, i.X, i.V, sampler=sampler, ends=ends)
                                            for i, sampler, ends in zip(integrators, samplers, rows[-1][1])],
                                           marks, bodies))
@@ -290,7 +297,7 @@ def _regroup(groups, old, new):
         if any(m is old for m in group.members):
             members = [new if m is old else m for m in group.members]
             kept = [m.A.copy() for m in members]
-            groups[g] = Group(members, group.junctions)
+            groups[g] = group.remade(members)
             for m, A in zip(members, kept):
                 m.A[...] = A
 

@@ -14,7 +14,7 @@ import copy
 from dataclasses import replace
 
 from cablefem.fem.system import build_system
-from cablefem.model.network import anchor_path, boundary_path, check_no_coupling, coupling
+from cablefem.model.network import anchor_path, boundary_path, check_steppable, coupling
 from cablefem.model.rod import check_rods_in_run
 
 
@@ -124,7 +124,7 @@ def start_states(scene, t0=0.0, systems=None):
     iterations). ``systems``: the lines' dynamic systems, whose FEM the static ones share and which
     start from the statics' history of the points."""
     check_rods_in_run(scene)
-    check_no_coupling(scene)
+    check_steppable(scene)
     statics, results, iterations, _ = static_lines(scene, t0, systems)
     if systems is not None:
         for static, system in zip(statics, systems):
@@ -146,10 +146,16 @@ def run_start(scene, t0=0.0):
     statics solved (fitted to the touchdown with ``[solver] fit_touchdown``), from the history of
     points its statics ended with; a string of a network on its own FEM (its junction ends are
     unknowns in a run, held in the network's statics)."""
+    return network_start(scene, t0)[:3]
+
+
+def network_start(scene, t0=0.0):
+    """``run_start`` and the network's statics (``NetworkStatics``, None without junctions or free
+    bodies), whose poses the free bodies start from."""
     from cablefem.model.network import dynamic_lines
 
     check_rods_in_run(scene)
-    check_no_coupling(scene)
+    check_steppable(scene)
     statics, results, iterations, network = static_lines(scene, t0)
     systems = []
     for k, (static, line) in enumerate(zip(statics, dynamic_lines(scene))):
@@ -161,4 +167,4 @@ def run_start(scene, t0=0.0):
             system = build_system(scene, line, fem=static.fem)
         start_history(static, system)
         systems.append(system)
-    return systems, [result.X for result in results], iterations
+    return systems, [result.X for result in results], iterations, network
