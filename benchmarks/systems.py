@@ -168,7 +168,7 @@ def clocked(module, names):
 
 def scene_of(system, order=None, elements=None, dt=None, tolerance=None):
     """The system's scene, every line's element order, element count (per segment), the step dt [s]
-    and Newton's tolerance replaced where given."""
+    (fixed steps) and Newton's tolerance replaced where given."""
     from cablefem.io import load_scene
     from cablefem.model.line import Segment
 
@@ -179,6 +179,8 @@ def scene_of(system, order=None, elements=None, dt=None, tolerance=None):
                  for line in scene.lines]
         scene = replace(scene, lines=lines)
     solver = {key: value for key, value in (("dt", dt), ("tolerance", tolerance)) if value is not None}
+    if dt is not None:  # a step given: fixed steps of it, as a scene's [solver] dt alone
+        solver["adaptive"] = False
     return replace(scene, solver=replace(scene.solver, **solver)) if solver else scene
 
 
@@ -257,8 +259,12 @@ def rows_of(system):
     its best settings."""
     best = SYSTEMS[system]["best"]
     label = f"cablefem, best (P{best['order']} x {best['elements']}, dt {best['dt']:g}, tol {best['tolerance']:g})"
+    scene = scene_of(system)
+    line, solver = scene.lines[0], scene.solver
+    steps = f"adaptive <= {solver.dt:g}" if solver.adaptive else f"dt {solver.dt:g}"
+    defaults = f"cablefem, defaults (P{line.order} x {sum(s.elements for s in line.segments)}, {steps})"
     return [("MoorDyn-C, the file", lambda: run_moordyn(system, scene_of(system))),
-            ("cablefem, defaults", lambda: run_cablefem(scene_of(system))),
+            (defaults, lambda: run_cablefem(scene_of(system))),
             (label, lambda: run_cablefem(scene_of(system, **best)))]
 
 
