@@ -1,5 +1,5 @@
 """Defaults by physics (cablefem.model.defaults, docs/scene.md "Defaults by physics"): a MoorDyn file's
-NumSegs read as an accuracy, error-controlled steps, frames; every explicit key obeyed as written."""
+NumSegs read as an accuracy, steps and frames by the forcing period; every explicit key obeyed as written."""
 
 import math
 from pathlib import Path
@@ -39,7 +39,7 @@ def test_moordyn_file_gets_p2_from_numsegs_and_a_note_naming_the_choice():
     assert len(mesh) == 1 and "NumSegs 20 -> 10" in mesh[0] and "P2" in mesh[0]
     # no motion in a MoorDyn file: nothing sets a step, the plain one stays
     assert not any(note.startswith("steps:") for note in scene.notes)
-    assert not scene.solver.adaptive and scene.solver.dt == 0.01
+    assert not scene.solver.adaptive and scene.solver.dt == 0.01 and scene.output.every == 0.1
 
 
 def _wrapped(tmp_path, moordyn="", solver="", output=""):
@@ -57,6 +57,7 @@ def test_the_step_defaults_to_a_fortieth_of_the_forcing_period(tmp_path):
     assert scene.solver.dt == pytest.approx(10.0 / defaults.FIXED_STEPS_PER_PERIOD)
     steps = [note for note in scene.notes if note.startswith("steps:")]
     assert len(steps) == 1 and "1/40 of the shortest forcing period (10 s)" in steps[0]
+    assert scene.output.every == pytest.approx(10.0 / defaults.FRAMES_PER_PERIOD)
 
 
 @pytest.mark.parametrize("keys, order, elements", [
@@ -83,7 +84,8 @@ def test_solver_keys_override_the_default_step(tmp_path, solver, adaptive, dt, n
 
 
 def test_adaptive_frames_fall_at_most_once_per_largest_step(tmp_path):
-    assert _wrapped(tmp_path, solver="adaptive = true").output.every == pytest.approx(0.5)
+    scene = _wrapped(tmp_path, solver="adaptive = true\ndt = 2.0")
+    assert scene.output.every == pytest.approx(2.0)
 
 
 def test_an_explicit_frame_interval_is_obeyed(tmp_path):

@@ -298,8 +298,9 @@ def _build(path, text, simplify=True, waves=True, defaults=True):
     if defaults:  # after _friction, which scales FricDamp with MoorDyn's segments
         lines, mesh_note = by_physics.moordyn_mesh(lines)
         solver, step_note = by_physics.step(solver, (), Motion(), environment.waves)
-        output = by_physics.frames(output, {"every"} if "output.every" in keys else (), solver)
-        notes += [note for note in (mesh_note, step_note) if note]
+        output, frame_note = by_physics.frames(output, {"every"} if "output.every" in keys else (), solver, Motion(),
+                                               environment.waves)
+        notes += [note for note in (mesh_note, step_note, frame_note) if note]
     if seabed_note is not None:  # a plane is used as given
         notes.append(seabed_note)
     if any(point.kind == "coupled" and point.body is None for point in scene_points.values()):

@@ -155,8 +155,9 @@ def read_toml_scene(path, data=None):
                                         motion, environment.waves)
     output_keys = _section(data, "output", OUTPUT_KEYS)
     given = set(output_keys) | ({"every"} if base is not None and "output.every" in base.keys else set())
-    output = by_physics.frames(replace(base.output if base else Output(), **output_keys), given, solver)
-    notes += [step_note] if step_note else []
+    output, frame_note = by_physics.frames(replace(base.output if base else Output(), **output_keys), given, solver,
+                                           motion, environment.waves)
+    notes += [note for note in (step_note, frame_note) if note]
     if seabed_note is not None:  # a plane is used as given
         notes.append(seabed_note)
     load_settings = {spec.section: v.pick(v.table(data[spec.section], spec.section), spec.section, spec.keys,

@@ -11,9 +11,9 @@
   chains, whose line 2 snaps every period, it fails with steps up to 0.5 s (t = 28.9 s) or a
   tolerance of 1e-2 (t = 45.3 s), and at 3e-3 costs 3x the fixed steps (docs/scene.md). Asked for
   alone, its largest step is a twentieth of that period (``largest_step``).
-- **VTK frames.** A MoorDyn file's dtOut where it gives one; with error control, one per largest
-  step (an adaptive run's steps land on every frame: frames closer than that would cut its steps);
-  else ``Output.every``.
+- **VTK frames.** A MoorDyn file's dtOut where it gives one; else a tenth of the shortest forcing
+  period (each frame ends a compiled march and costs ~2 ms of OC4's run; tensions.csv keeps every
+  step), with error control at least its largest step (its steps land on every frame).
 
 The dataclasses of ``cablefem.model.scene`` keep the plain defaults for scenes built in Python.
 """
@@ -33,6 +33,9 @@ FIXED_STEPS_PER_PERIOD = 40
 #: adaptive steps per shortest forcing period at most; and the largest step of a scene driven by none [s]
 STEPS_PER_PERIOD = 20
 LONGEST_STEP = 1.0
+#: VTK frames per shortest forcing period (OC4 at defaults: frames every 0.25 s cost 2.2x the run of
+#: frames every 1 s, benchmarks/systems.py)
+FRAMES_PER_PERIOD = 10
 #: wave components this fraction of the largest amplitude or more set the shortest wave period
 WAVE_AMPLITUDE_SHARE = 0.1
 
@@ -102,10 +105,19 @@ def step(solver, given, motion, sea=None):
                     f"period ({min(periods):g} s); [solver] dt or adaptive = true set them")
 
 
-def frames(output, given, solver):
-    """``output`` with its frame interval ``every`` [s] at least the largest step of an adaptive
-    ``solver`` where ``given`` (the [output] keys the scene sets, "every" for a MoorDyn file's dtOut)
-    leaves it open."""
-    if "every" in given or not solver.adaptive or output.every >= solver.dt:
-        return output
-    return replace(output, every=solver.dt)
+def frames(output, given, solver, motion, sea=None):
+    """``output`` with its frame interval ``every`` [s] chosen where ``given`` (the [output] keys the
+    scene sets, "every" for a MoorDyn file's dtOut) leaves it open: a tenth of the shortest forcing
+    period, or the plain interval where nothing drives the scene; with error control at least its
+    largest step (an adaptive run's steps land on every frame). Returns (output, note or None)."""
+    if "every" in given:
+        return output, None
+    periods = forcing_periods(motion, sea)
+    every = min(periods) / FRAMES_PER_PERIOD if periods else output.every
+    if solver.adaptive:
+        every = max(every, solver.dt)
+    if every == output.every:
+        return output, None
+    return replace(output, every=every), (f"frames: a VTK frame every {every:g} s, 1/{FRAMES_PER_PERIOD} of the "
+                                          f"shortest forcing period or the largest step; tensions.csv has "
+                                          "every step; [output] every sets it")
