@@ -111,6 +111,8 @@ def test_largest_step_follows_the_shortest_strong_wave_period():
     assert defaults.largest_step(Motion(), sea) == pytest.approx(8.0 / defaults.STEPS_PER_PERIOD)
     assert defaults.largest_step(Motion(kind="harmonic", period=6.0)) == pytest.approx(0.3)
     assert defaults.largest_step(Motion()) == defaults.LONGEST_STEP
+    table = Motion(kind="table", times=np.array([0.0, 0.5, 1.0]), positions=np.zeros((3, 3)), ramp=17.0)
+    assert defaults.forcing_periods(table) == [1.0, 17.0]  # twice its rows' interval, and its ramp
 
 
 def test_oc4_adaptive_with_steps_up_to_02_s_runs_past_where_it_failed(tmp_path):

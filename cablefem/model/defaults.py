@@ -21,6 +21,8 @@ The dataclasses of ``cablefem.model.scene`` keep the plain defaults for scenes b
 import math
 from dataclasses import replace
 
+import numpy as np
+
 #: P2 elements per MoorDyn segment are 1 / NUMSEGS_PER_P2, as many nodes as MoorDyn's: as accurate as
 #: its lumped mass at NumSegs 10-20 in statics by the error's fits (verification/work_precision/numsegs.py:
 #: 0.36-0.50 NumSegs needed)
@@ -61,16 +63,17 @@ def moordyn_mesh(lines):
 
 
 def forcing_periods(motion, sea=None):
-    """The periods [s] of what drives a scene: a harmonic or circular motion's period, a ramp, and
+    """The periods [s] of what drives a scene: a harmonic or circular motion's period, twice a motion
+    table's shortest row interval, a ramp, and
     the waves' components of at least WAVE_AMPLITUDE_SHARE of the largest amplitude."""
     periods = []
     if motion.kind in ("harmonic", "circular"):
         periods.append(motion.period)
+    if motion.kind == "table" and motion.times is not None and len(motion.times) > 1:
+        periods.append(2.0 * float(np.min(np.diff(motion.times))))  # the shortest period its rows resolve
     if motion.ramp > 0.0:
         periods.append(motion.ramp)
     if sea is not None:
-        import numpy as np
-
         amplitude, omega = np.asarray(sea.amplitude, dtype=float), np.asarray(sea.omega, dtype=float)
         strong = (amplitude >= WAVE_AMPLITUDE_SHARE * amplitude.max()) & (omega > 0.0)
         periods += [2.0 * math.pi / w for w in omega[strong]]
