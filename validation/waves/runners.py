@@ -10,7 +10,6 @@ import numpy as np
 
 from cablefem.dynamics.registry import INTEGRATORS
 from cablefem.fem.system import build_system
-from cablefem.io import load_scene
 from cablefem.model.network import boundary_path
 from cablefem.statics.scene import start_states
 from validation.moordyn import peer
