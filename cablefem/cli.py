@@ -101,6 +101,10 @@ def cmd_run(args):
     for name, extremes in summary["tension_extremes"].items():
         print(f"{name}: fairlead tension {extremes['fairlead_tension_min']:.4e} .. "
               f"{extremes['fairlead_tension_max']:.4e} N")
+    for failure in summary.get("failures", ()):
+        when = "did not let go" if failure["released_at"] is None else \
+            f"let go at {failure['released_at']:.6g} s, its tension {failure['tension_at_release']:.4e} N"
+        print(f"{failure['line']}: {failure['end']} {when}")
     print(f"{summary['steps']} steps, {summary['newton_iterations']} Newton iterations, "
           f"{summary['simulated_time_s']:.3f} s simulated in {summary['wall_time_s']:.2f} s")
 

@@ -32,7 +32,9 @@ def rng():
 
 def make_line(line_type, order=1, elements=20, anchor=(-600.0, 0.0, -100.0), fairlead=(0.0, 0.0, 0.0),
               length=635.0):
-    """A one-segment line of ``line_type``."""
+    """A one-segment line of ``line_type``; ``order`` "hermite": on Hermite elements."""
+    if order == "hermite":
+        return Line("line1", anchor, fairlead, [Segment(line_type, length, elements)], element="hermite")
     return Line("line1", anchor, fairlead, [Segment(line_type, length, elements)], order)
 
 

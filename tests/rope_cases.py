@@ -42,11 +42,14 @@ def rope_type(kind, slack=False):
 
 
 def rope_system(kind, order, slack=False, rng=None):
-    """A line of 6 elements of law ``kind`` between prescribed ends over a 100 m flat seabed, its
+    """A line of 6 elements of law ``kind`` (``order``: 1-3, or "hermite": Hermite elements) between
+    prescribed ends over a 100 m flat seabed, its
     slow strain (viscoelastic, SYROPE) set to 0.4-0.8 % and SYROPE's peak to its initial condition."""
     line_type = rope_type(kind, slack)
     initial = INITIAL if line_type.axial.kind == "syrope" else None
-    line = Line("rope", [0.0, 0.0, -50.0], [101.8, 0.0, -50.0], [Segment(line_type, 100.0, 6, initial)], order)
+    kind_of_element = {"element": "hermite"} if order == "hermite" else {"order": order}  # order "hermite": Hermite
+    line = Line("rope", [0.0, 0.0, -50.0], [101.8, 0.0, -50.0], [Segment(line_type, 100.0, 6, initial)],
+                **kind_of_element)
     system = LineSystem(line, Horizontal(100.0), Contact(), Environment(), dynamic=True)
     rng = rng or np.random.default_rng(5)
     old, new = system.history["reduced"]

@@ -139,6 +139,7 @@ SUBPROCESS = [
     ("escaping name", {NAME: 'name = "../../escaped"'}, ["--out", "{tmp}/o"], "path separator"),
     ("EA 1e308", {"EA = 3.15e9": "EA = 1e308"}, ["--out", "{tmp}/o"], "line_types.chain.EA"),
     ("out is a file", {}, ["--out", "{tmp}/scene.toml"], "exists and is not a folder"),
+    ("EI on Lagrange elements", {"EA = 3.15e9": "EA = 3.15e9\nEI = 1.0e4"}, [], 'lines[0].element: line type \'chain\' has EI > 0'),
     ("anchor below the seabed", {"anchor = [-560.0, 0.0, -150.0]": "anchor = [-560.0, 0.0, -350.0]"}, [],
      "lines[0].anchor"),
 ]

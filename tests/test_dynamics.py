@@ -296,3 +296,17 @@ def test_compiled_adaptive_steps_grow_as_the_python_ones(tmp_path, monkeypatch):
     assert abs(compiled["steps"] - python["steps"]) <= 0.1 * python["steps"], (compiled["steps"], python["steps"])
     a, b = (read_tensions(str(tmp_path / name))["fairlead_tension"] for name in ("compiled", "python"))
     assert np.abs(a - b).max() <= 10 * scene.solver.error_tolerance * b.max()
+
+
+def test_adaptive_steps_that_cannot_meet_their_error_stop_with_the_solvers_message(tmp_path):
+    """A light chain whose fairlead heaves 1.5 m every 3 s without a ramp: adaptive BDF2 cannot keep its
+    steps' error and Newton's residual within their tolerances. The run stops with a ConvergenceError
+    that says where and what to try (a step whose error never fell used to shrink without a floor
+    until the compiled step divided by zero)."""
+    from cablefem.errors import ConvergenceError
+    from cablefem.runs.run import run_scene
+    from test_failures import HEAVE, hang_scene
+
+    scene = hang_scene(tmp_path, HEAVE, duration=4.0, solver="adaptive = true\n", name="heave.toml")
+    with pytest.raises(ConvergenceError, match=r"at t = [0-9.]+ s .*dt = .*try "):
+        run_scene(scene, str(tmp_path / "out"), progress=False)

@@ -346,11 +346,12 @@ ROPE = LineType("rope", diameter=0.15, mass=40.0, EA=2.0e6, damping=0.05, Cd_nor
                 Cd_tangential=0.4, Ca_normal=1.0, Ca_tangential=0.5)
 
 
-def system_with_all_loads(seabed, law, order, profile=None):
+def system_with_all_loads(seabed, law, order, profile=None, line_type=ROPE):
     """A soft rope (so that tension does not swamp the other loads' share of the tangent) with
     drag in a current (uniform, or ``profile``), added mass and contact with friction; LineSystem's
-    own contact is off."""
-    line = make_line(ROPE, order, elements=12, length=590.0)  # taut: every point stretched >= 1.7 %
+    own contact is off. ``order`` "hermite": on Hermite elements (with bending where ``line_type``
+    has EI > 0)."""
+    line = make_line(line_type, order, elements=12, length=590.0)  # taut: every point stretched >= 1.7 %
     env = Environment(current=(0.2, 0.1, 0.0), current_profile=profile)
     nel = line.segments[0].elements
     props = dict(diameter=np.full(nel, ROPE.diameter), mass=np.full(nel, ROPE.mass))

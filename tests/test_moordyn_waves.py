@@ -10,6 +10,7 @@ import pytest
 
 from bad_input import BASE_MOORDYN, Case, assert_refused, edit
 from cablefem.io import load_scene
+from validation.moordyn.peer import silenced_stdout
 
 moordyn = pytest.importorskip("moordyn")
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "moordyn")
@@ -18,24 +19,22 @@ DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "moordyn
 def moordyn_kinematics(path, points, times):
     """MoorDyn-C's (U, Ud, zeta) at points (n, 3) at each of ``times`` (stepping its system there), run
     from the file's folder as MoorDyn's own tests run; its output on file descriptor 1 discarded."""
-    saved, devnull, cwd = os.dup(1), os.open(os.devnull, os.O_WRONLY), os.getcwd()
-    os.dup2(devnull, 1)
+    cwd = os.getcwd()
     try:
-        os.chdir(os.path.dirname(path))
-        system = moordyn.Create(os.path.basename(path))
-        n = moordyn.NCoupledDOF(system)
-        moordyn.Init(system, [0.0] * n, [0.0] * n)
-        waves, t, out = moordyn.GetWaves(system), 0.0, []
-        for time in times:
-            if time > t:
-                moordyn.Step(system, [0.0] * n, [0.0] * n, t, time - t)
-                t = time
-            out.append([moordyn.GetWavesKin(waves, *point)[:3] for point in points])
-        moordyn.Close(system)
+        with silenced_stdout():
+            os.chdir(os.path.dirname(path))
+            system = moordyn.Create(os.path.basename(path))
+            n = moordyn.NCoupledDOF(system)
+            moordyn.Init(system, [0.0] * n, [0.0] * n)
+            waves, t, out = moordyn.GetWaves(system), 0.0, []
+            for time in times:
+                if time > t:
+                    moordyn.Step(system, [0.0] * n, [0.0] * n, t, time - t)
+                    t = time
+                out.append([moordyn.GetWavesKin(waves, *point)[:3] for point in points])
+            moordyn.Close(system)
     finally:
         os.chdir(cwd)
-        os.dup2(saved, 1)
-        os.close(devnull)
     return out
 
 
@@ -73,6 +72,23 @@ def test_wavekin_2_and_3_equal_moordyn_cs_grid_at_its_nodes(name):
         assert np.allclose(ours.acceleration[i], Ud, atol=1e-3 * np.abs(Ud).max())
 
 
+def test_wavekin_1_is_still_water_as_moordyn_c_runs_the_file_alone(tmp_path):
+    """WaveKin 1 takes the kinematics through MoorDyn-C's API; run from the file alone MoorDyn-C's water
+    stays still (its own kinematics at a point, before and after a step), and cablefem reads the file as
+    the same file with WaveKin 0, saying so in a note."""
+    path = os.path.join(DATA, "wavekin_wave_1.txt")
+    points = np.array([[200.0, 0.0, -10.0], [0.0, 0.0, -1.0]])
+    for kinematics in moordyn_kinematics(path, points, [0.0, 1.0]):
+        assert np.all(np.abs(np.array([np.concatenate((U, Ud, [zeta])) for U, Ud, zeta in kinematics])) == 0.0)
+    still = tmp_path / "still.txt"
+    with open(path) as source:
+        still.write_text(source.read().replace("1             WaveKin", "0             WaveKin"))
+    ours, theirs = load_scene(path), load_scene(str(still))
+    assert ours.environment.waves is None
+    assert any(note.startswith("WaveKin 1: ") and "still water" in note for note in ours.notes)
+    assert repr((ours.lines, ours.environment)) == repr((theirs.lines, theirs.environment))
+
+
 def test_a_toml_wrapping_a_moordyn_file_may_give_waves_instead(tmp_path):
     source = os.path.join(DATA, "wavekin_7", "wavekin_7.txt")
     shutil.copy(source, tmp_path / "lines.txt")  # without its wave_frequencies.txt
@@ -84,8 +100,8 @@ def test_a_toml_wrapping_a_moordyn_file_may_give_waves_instead(tmp_path):
 
 
 BAD = [
-    ("1   WaveKin", {}, "line 22: OPTIONS.WaveKin", "wave kinematics other than WaveKin 0, 2, 3 and 7"),
-    ("5   WaveKin", {}, "line 22: OPTIONS.WaveKin", "wave kinematics other than WaveKin 0, 2, 3 and 7"),
+    ("4   WaveKin", {}, "line 22: OPTIONS.WaveKin", "wave kinematics other than WaveKin 0, 1, 2, 3 and 7"),
+    ("5   WaveKin", {}, "line 22: OPTIONS.WaveKin", "wave kinematics other than WaveKin 0, 1, 2, 3 and 7"),
     ("7   WaveKin", {}, "line 22: OPTIONS.WaveKin (wave_frequencies.txt beside the file)", "file not found"),
     ("7   WaveKin", {"wave_frequencies.txt": "0.1 0.0 0.0\n0.3 1.0 0.0\n"}, "line 22: OPTIONS.WaveKin",
      "wave_frequencies.txt: the first frequency must be 0 rad/s"),

@@ -16,6 +16,7 @@ import numpy as np
 from scipy.linalg import lapack
 
 from cablefem.compiled import kernels
+from cablefem.compiled.hermite import CLAMP_LOCAL
 from cablefem.fem.evaluator import Evaluator
 from cablefem.geometry import Plane
 from cablefem.loads import catalog
@@ -69,6 +70,24 @@ def pack_nodes(loads):
     return vertices, record
 
 
+def band_order(fem, dofs):
+    """The rows of ``fem`` in band order (N,): along the line, each element's left vertex, its
+    interior, its right vertex. On Hermite elements a vertex is its position and its tangent, the
+    last vertex its tangent first, so that the prescribed end positions are the band's first and
+    last rows and the unknowns between them contiguous."""
+    order = []
+    if fem.hermite:
+        nv = fem.n_vertices
+        for v in range(nv):
+            order.extend((v, nv + v) if v < nv - 1 else (nv + v, v))
+        return order
+    for e in range(fem.n_elements):
+        for i in (fem.mesh.t[0, e], *dofs[e, 2:], fem.mesh.t[1, e]):
+            if not order or order[-1] != i:
+                order.append(int(i))
+    return order
+
+
 class FusedEvaluator(Evaluator):
     """Compiled residual and banded tangent of one ``LineSystem`` (see the module docstring), behind
     the evaluator interface of ``cablefem.fem.evaluator``."""
@@ -80,11 +99,7 @@ class FusedEvaluator(Evaluator):
         super().__init__(system)
         fem = system.fem
         dofs = fem.element_dofs.astype(np.int64)
-        order = []
-        for e in range(fem.n_elements):
-            for i in (fem.mesh.t[0, e], *dofs[e, 2:], fem.mesh.t[1, e]):
-                if not order or order[-1] != i:
-                    order.append(int(i))
+        order = band_order(fem, dofs)
         position = np.empty(fem.n_dofs, dtype=np.int64)
         position[np.array(order)] = np.arange(len(order))
         nloc = dofs.shape[1]
@@ -96,11 +111,23 @@ class FusedEvaluator(Evaluator):
         self.band_of_free = position[fem.free_dofs] - lo  # band position of fem.free_dofs
         self.full, self.reduced = fem.full, fem.reduced
         vertices, node_params = pack_nodes(system.loads)
-        self.mesh = kernels.Mesh(dofs, position, fem.full.phi, fem.full.dphi, fem.full.dx, fem.reduced.phi,
-                                 fem.reduced.dphi, fem.reduced.dx, np.asarray(mass, dtype=float), self.kl, self.ku,
-                                 lo, hi, vertices)
+        # r'' at the full points only where a load reads it (bending on Hermite elements)
+        second = fem.full.ddphi if system.has("bending") else np.zeros((0, 0, 0))
+        clamp = np.zeros((2, 8))  # ``kernels.Points``
+        clamp[:, CLAMP_LOCAL] = (2, 3)  # the tangents' local DOFs in the end elements
+        for c in system.clamps:
+            end = fem.tangent_dofs.index(c.row)
+            clamp[end, :CLAMP_LOCAL] = (*c.direction, c.scale)
+        # every array C-ordered: the kernels' types are then the same for every line (scikit-fem's
+        # weights are Fortran-ordered, a single column both: P1 and Hermite strings of one junction
+        # would otherwise need two compiled loops)
+        c = np.ascontiguousarray
+        self.mesh = kernels.Mesh(dofs, position, c(fem.full.phi), c(fem.full.dphi), c(fem.full.dx), c(fem.reduced.phi),
+                                 c(fem.reduced.dphi), c(fem.reduced.dx), np.asarray(mass, dtype=float), self.kl,
+                                 self.ku, lo, hi, vertices)
         nel, nq, nr = fem.n_elements, fem.full.dx.shape[1], fem.reduced.dx.shape[1]
-        self.points = kernels.points(pack_params(system.loads, nel), system.history, nq, nr, node_params)
+        self.points = kernels.points(pack_params(system.loads, nel), system.history, nq, nr, node_params, c(second),
+                                     clamp)
         # the branch state where the last Newton step started (``keep``), for the holds (``hold``)
         self.base_full = self.points.full_state.copy()
         self.base_reduced = self.points.reduced_state.copy()
@@ -149,6 +176,17 @@ class FusedEvaluator(Evaluator):
                                    bool(jacobian), rows, band)
         return rows, (band if jacobian else None)
 
+    def add_constraints(self, band):
+        """Add the clamped ends' constraint blocks k (I - d d^T) to a band (in place): a difference
+        of two tangents (the mass from K + M and K) loses them."""
+        for c in self.system.clamps:
+            j = self.mesh.position[c.row] - self.mesh.lo
+            block = c.scale * (np.eye(3) - np.outer(c.direction, c.direction))
+            for a in range(3):
+                for b in range(3):
+                    band[self.kl + self.ku + a - b, 3 * j + b] += block[a, b]
+        return band
+
     def keep(self):
         """Remember the branch state of the last evaluation as the base of Newton's corrections."""
         self.base_full[...] = self.points.full_state
@@ -165,8 +203,9 @@ class FusedEvaluator(Evaluator):
         self.points.reduced_hold[...] = 0
 
     def mass_factors(self, X, V, A, tangent, t=0.0):
-        """Factors of the free rows' mass at a state at time t [s]: the a_x = 1 tangent less the a_x = 0 one."""
-        return self.factorize(tangent - self.evaluate(X, V, A, 0.0, 0.0, t=t)[1])
+        """Factors of the free rows' mass at a state at time t [s]: the a_x = 1 tangent less the a_x = 0
+        one, the clamps' constraint added back (``add_constraints``)."""
+        return self.factorize(self.add_constraints(tangent - self.evaluate(X, V, A, 0.0, 0.0, t=t)[1]))
 
     def factorize(self, band, scale=1.0):
         """LU factors of scale x band (dgbtrf); None if singular."""

@@ -15,7 +15,13 @@ where its spec ``reads`` it: friction reads the contact's ``ctx.contact.normal_f
 branch state to the point's state record, reads its holds and its committed history, writes its
 trial history, and adds its force and Jacobian blocks to the output record (``OUT``: f,
 A = -(f_r + v_x f_v + a_x f_a), B = -f_dr at full points; the flux N and D = N_dr + v_x N_dv at
-reduced ones).
+reduced ones). On a line on Hermite elements with bending (``cablefem.loads.bending``;
+``Points.ddphi`` not empty) the full points also read r'' (``ctx.ddr``, ``_second_kinematics``) and
+take a flux N and a moment Q against phi', phi'' with the blocks D = N_r', E = N_r'', F = Q_r',
+G = Q_r'' (``_add_second``); a clamped end's tangent row is made its constraint in the end element's
+rows (``_clamp``, ``cablefem.fem.clamp``): ``cablefem.compiled.hermite``. The element loop is compiled twice, with and without
+these (``_elements``), so that a line without bending runs no test for them per point, and its
+basis and clamps ride in ``Points``, not ``Mesh``, whose arrays the per-point calls copy.
 
 The kernels run with numba's reference counting off (``_nrt=False``: they allocate nothing; with
 it on, every scratch view and array argument costs an atomic increment and decrement, which was
@@ -33,6 +39,7 @@ from numba import uint64 as _index
 from numba.core.errors import NumbaExperimentalFeatureWarning
 from numba.extending import overload
 
+from cablefem.compiled.hermite import CLAMP_SCALE, _add_second, _clamp, _second_kinematics
 from cablefem.loads import catalog
 from cablefem.waves.compiled import NONE as NO_WATER, water_cached
 
@@ -58,7 +65,8 @@ POINT = [("r", "f8", (3,)), ("dr", "f8", (3,)), ("v", "f8", (3,)), ("dv", "f8", 
          ("curved", "?"), ("v_x", "f8"), ("a_x", "f8"), ("inv_h", "f8"), ("jac", "?"), ("held", "?"), ("time", "f8"),
          ("wet", "?"), ("eta", "f8"), ("water_u", "f8", (3,)), ("water_a", "f8", (3,)),
          ("water_du", "f8", (3, 3)), ("water_da", "f8", (3, 3)),
-         ("full_loads", "u1", (len(FULL_KERNELS),)), ("reduced_loads", "u1", (len(REDUCED_KERNELS),))]
+         ("full_loads", "u1", (len(FULL_KERNELS),)), ("reduced_loads", "u1", (len(REDUCED_KERNELS),)),
+         ("ddr", "f8", (3,))]  # r'' of a Hermite line with bending (``_second_kinematics``)
 _clash = {name for name, _ in LAYOUT.scratch} & {entry[0] for entry in POINT}
 if _clash:
     raise ValueError(f"load name(s) {sorted(_clash)} clash with the point context's own fields")
@@ -66,7 +74,8 @@ if _clash:
 CONTEXT = np.dtype(POINT + list(LAYOUT.scratch), align=True)
 #: what a point kernel adds to
 OUT = np.dtype([("f", "f8", (3,)), ("A", "f8", (3, 3)), ("B", "f8", (3, 3)), ("N", "f8", (3,)),
-                ("D", "f8", (3, 3))], align=True)
+                ("D", "f8", (3, 3)), ("Q", "f8", (3,)), ("E", "f8", (3, 3)), ("F", "f8", (3, 3)),
+                ("G", "f8", (3, 3))], align=True)
 
 #: a line's mesh as the loop reads it: element DOFs (nel, nloc), band positions (N,), basis values,
 #: derivatives and weights at the full and reduced points, mass per length (nel,), band widths, the
@@ -79,9 +88,17 @@ Bed = namedtuple("Bed", "plane gap normal grad_gap dnormal")
 #: the records of ``cablefem.loads.catalog``: parameters (nel,), and per full (nel, nq) and reduced
 #: (nel, nr) point the committed and trial history, the branch state and the holds; the node loads'
 #: parameters (k,); which full and reduced loads of the catalog the line has (bool, in catalog
-#: order: the point loops call only those, so that a load a scene does not use costs no call)
+#: order: the point loops call only those, so that a load a scene does not use costs no call); the
+#: second derivatives of the basis at the full points (nloc, nel, nq) where a load reads r''
+#: (bending on Hermite elements; (0, 0, 0) otherwise); and the clamped ends (2, 8): per end its
+#: direction d (0:3) and constraint scale k (3; 0: not clamped), the local DOF of its tangent row in
+#: its element (4), and (5:8, written by every evaluation of an end element) the row M A + G of the
+#: clamped tangent before the constraint replaces it: the clamp's reaction
+#: (``cablefem.fem.clamp.reaction_moments``). Not in ``Mesh``: the per-point calls that take the mesh
+#: copy each of its arrays, which lines without bending would pay for
 Points = namedtuple("Points", "params full_old full_new full_state full_hold "
-                              "reduced_old reduced_new reduced_state reduced_hold nodes full_loads reduced_loads")
+                              "reduced_old reduced_new reduced_state reduced_hold nodes full_loads reduced_loads "
+                              "ddphi clamp")
 #: scratch: a context (the loads' scratch in it) and an output record, an element's rows (nloc, 3)
 #: and matrix (nloc, 3, nloc, 3)
 Work = namedtuple("Work", "ctx out Re Ke")
@@ -92,15 +109,16 @@ def records(dtype, shape):
     return np.zeros(shape, dtype=dtype)
 
 
-def points(params, history, nq, nr, nodes):
+def points(params, history, nq, nr, nodes, ddphi, clamp):
     """Per-point records (``Points``) for ``params`` (nel,) with nq full and nr reduced points: the
     history of a ``LineSystem`` (``system.history``, shared: the compiled and the numpy path commit
-    the same records), fresh branch state and holds; ``nodes``: the node loads' parameters (k,)."""
+    the same records), fresh branch state and holds; ``nodes``: the node loads' parameters (k,);
+    ``ddphi``, ``clamp``: the bending's basis and the clamped ends (``Points``)."""
     L, nel = LAYOUT, params.shape[0]
     (full_old, full_new), (reduced_old, reduced_new) = history["full"], history["reduced"]
     return Points(params, full_old, full_new, records(L.full_state, (nel, nq)), records(L.full_hold, (nel, nq)),
                   reduced_old, reduced_new, records(L.reduced_state, (nel, nr)), records(L.reduced_hold, (nel, nr)),
-                  nodes, active(params, L.full), active(params, L.reduced))
+                  nodes, active(params, L.full), active(params, L.reduced), ddphi, clamp)
 
 
 def active(params, specs):
@@ -130,7 +148,7 @@ def _inverse_step(factors):
 @njit(cache=True, inline="always", _nrt=False)
 def full_point(ctx, p, old, new, state, hold, out):
     """The full-point loads of the catalog the line has (``ctx.full_loads``), in order, into
-    ``out`` (f, A, B zeroed first)."""
+    ``out`` (f, A, B zeroed first; N, Q, D, E, F, G by ``_second_kinematics`` where they are read)."""
     out.f[:] = 0.0
     if ctx.jac:
         out.A[:, :] = 0.0
@@ -281,14 +299,30 @@ def assemble(mesh, bed, water, pts, work, state, factors, jac, held, rows, band,
     factors: (v_x, a_x) or (v_x, a_x, h) with the step's size h [s] (``inverse_step``); held: the
     loads keep the branches the hold records hold (Newton's corrections). Kernel, so over 12
     arguments' worth of data comes in named tuples."""
-    X, V, Acc, time = state
-    ctx, out, Re, Ke = work.ctx[0], work.out[0], work.Re, work.Ke
+    ctx = work.ctx[0]
     ctx.v_x, ctx.a_x, ctx.inv_h = factors[0], factors[1], inverse_step(factors)
-    ctx.jac, ctx.held, ctx.time = jac, held, time
+    ctx.jac, ctx.held, ctx.time = jac, held, state[3]
     for k in range(pts.full_loads.shape[0]):
         ctx.full_loads[k] = pts.full_loads[k]
     for k in range(pts.reduced_loads.shape[0]):
         ctx.reduced_loads[k] = pts.reduced_loads[k]
+    if pts.ddphi.shape[0] > 0 or pts.clamp[0, CLAMP_SCALE] > 0.0 or pts.clamp[1, CLAMP_SCALE] > 0.0:
+        _elements(mesh, bed, water, pts, work, state, jac, rows, band, elements, True)
+    else:  # the loop compiled without the bending's branches
+        _elements(mesh, bed, water, pts, work, state, jac, rows, band, elements, False)
+
+
+@njit(cache=True, inline="always", _nrt=False)
+def _elements(mesh, bed, water, pts, work, state, jac, rows, band, elements, bends):
+    """``assemble``'s loop over ``elements``; ``bends``, a constant at each call (the compiler
+    drops its branches where it is False): r'' read at the full points (a Hermite line with
+    bending) and the clamped ends' rows made their constraints."""
+    X, V, Acc = state[0], state[1], state[2]
+    ctx, out, Re, Ke = work.ctx[0], work.out[0], work.Re, work.Ke
+    second = bends and pts.ddphi.shape[0] > 0
+    first_clamped = bends and pts.clamp[0, CLAMP_SCALE] > 0.0
+    last_clamped = bends and pts.clamp[1, CLAMP_SCALE] > 0.0
+    last = mesh.dofs.shape[0] - 1
     nq, nr = mesh.dx.shape[1], mesh.rdx.shape[1]
     for element in elements:
         e = _index(element)  # unsigned: no wrap-around fix-up on the many accesses by e (banded.py)
@@ -298,17 +332,25 @@ def assemble(mesh, bed, water, pts, work, state, factors, jac, held, rows, band,
         p = pts.params[e]
         for g in range(nq):
             _kinematics(ctx, mesh, X, V, Acc, e, g)
+            if second:
+                _second_kinematics(ctx, out, mesh, pts.ddphi, X, e, g)
             _seabed(ctx, bed, e, g)
             if water.kind != NO_WATER:
                 _water(ctx, water, element * nq + g)
             full_point(ctx, p, pts.full_old[e, g], pts.full_new[e, g], pts.full_state[e, g],
                        pts.full_hold[e, g], out)
             _add_full(Re, Ke, mesh, out, ctx, e, g, jac)
+            if second:
+                _add_second(Re, Ke, mesh, pts.ddphi, out, e, g, jac)
         for g in range(nr):
             _reduced_kinematics(ctx, mesh, X, V, e, g)
             reduced_point(ctx, p, pts.reduced_old[e, g], pts.reduced_new[e, g], pts.reduced_state[e, g],
                           pts.reduced_hold[e, g], out)
             _add_reduced(Re, Ke, mesh, out, e, g, jac)
+        if first_clamped and e == 0:
+            _clamp(Re, Ke, mesh, pts.clamp, X, e, 0, jac)
+        if last_clamped and e == last:
+            _clamp(Re, Ke, mesh, pts.clamp, X, e, 1, jac)
         _scatter(Re, Ke, mesh, e, jac, rows, band)
 
 

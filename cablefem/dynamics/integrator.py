@@ -26,6 +26,8 @@ import numpy as np
 
 from cablefem.dynamics import policy
 from cablefem.errors import ConvergenceError
+from cablefem.fem import clamp
+from cablefem.fem.forms import mass_matrix
 
 
 def _counter(index):
@@ -309,7 +311,14 @@ class Integrator:
         return target
 
     def too_small(self, h):
-        """The error of a step of size h whose Newton failed when half of it is below ``min_dt``."""
+        """The error of a step of size h whose Newton failed when half of it is below ``min_dt``, or
+        whose local error stayed above the tolerance down to ``min_dt`` (its Newton converged)."""
+        if self.adaptive and self.last_residual <= self.tolerance:
+            return ConvergenceError(
+                f"{self.name}: the step's local tension error stayed above error_tolerance = "
+                f"{self.error_tolerance:g} at t = {self.t:.6g} s down to dt = {h:.3g} s; try a larger "
+                "error_tolerance, fixed steps (adaptive = false) or a ramp on the motion",
+                residual=self.last_residual, iterations=self.newton_iterations)
         return ConvergenceError(
             f"{self.name}: Newton did not converge at t = {self.t:.6g} s even with "
             f"dt = {h:.3g} s (relative residual {self.last_residual:.3g}, tolerance "
@@ -368,6 +377,22 @@ class Integrator:
             points = self.system.end_point_loads(self.X, self.V, self.A, self.t)
             fairlead, anchor = fairlead - points[0], anchor - points[1]
         return fairlead, anchor
+
+    def clamp_moments(self):
+        """Moments (2, 3) [N m] the anchor's and the fairlead's clamp exert on the line at the current
+        state (``clamp.reaction_moments``; zero at an end that is not clamped). Compiled: from the rows
+        the last evaluation of the end elements kept, which an accepted step made at its state."""
+        system = self.system
+        if not system.clamps:
+            return np.zeros((2, 3))
+        if self.evaluator.compiled:
+            from cablefem.compiled.hermite import CLAMP_ROWS
+
+            return clamp.reaction_moments(system, self.X, self.evaluator.points.clamp[:, CLAMP_ROWS:])
+        state = system.state(self.X, self.V, self.A, self.t)
+        rows = system.evaluate(state, jacobian=False, constrained=False)[0]
+        rows = rows + (mass_matrix(system, self.evaluator.lumped) @ self.A.ravel()).reshape(self.A.shape)
+        return clamp.reaction_moments(system, self.X, rows[list(self.fem.tangent_dofs)])
 
     def statistics(self):
         """Counters as a dict, for summary.json."""

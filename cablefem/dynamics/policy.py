@@ -281,7 +281,7 @@ def advance(prob, k, target, first):
     (the compiled steps, which know the prescribed ends at ``parts`` splits of the target) a step
     ends on a split: an adaptive one is cut back to the split before it.
 
-    Returns DONE, FAILED (a halving would go below ``min_dt``), SPLIT (the ends cannot be placed
+    Returns DONE, FAILED (a halving, or an inaccurate step's reduction, would go below ``min_dt``), SPLIT (the ends cannot be placed
     where an attempt would end: ``place_ends``) or PROJECTION; the size of the attempt that stopped
     is recorded."""
     settings = prob.settings
@@ -324,7 +324,11 @@ def advance(prob, k, target, first):
             continue
         if outcome == INACCURATE:  # converged, its error too large: smaller, as the error says
             ops.count(prob, NUMBER[REJECTED], NUMBER[1])
-            h *= max(0.2, 0.9 * (settings.error_tolerance / ops.last_error(prob)) ** (1.0 / 3.0))
+            smaller = h * max(0.2, 0.9 * (settings.error_tolerance / ops.last_error(prob)) ** (1.0 / 3.0))
+            if smaller < settings.min_dt:  # the error does not fall with the step: stop, as a halving does
+                ops.record_stop(prob, h)
+                return FAILED
+            h = smaller
             ops.set_proposal(prob, h)
             continue
         ops.count(prob, NUMBER[STEPS], NUMBER[1])

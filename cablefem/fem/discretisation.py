@@ -3,13 +3,18 @@
 The mesh is a ``MeshLine`` on [0, L] with vertices at the segment
 boundaries; the unknown is the position r(s) in R^3, an ``ElementVector``
 of ``ElementLineP1``, ``ElementLineP2`` or ``ElementLinePp(p)`` with three
-components (desire2023 Sec. 2.1.2, here of any order).
+components (desire2023 Sec. 2.1.2, here of any order), or of the C1 cubic
+Hermite element (``cablefem.fem.hermite``) whose unknowns are the positions
+and the tangents r'(s) at the vertices.
 
 scikit-fem orders the vector DOFs component-fastest (DOF 3 i + c is
 component c of scalar DOF i), so a state is an array X of shape (N, 3) whose
 first rows are the vertex positions, anchor first; for P3 and up the other
 rows are the hierarchical (integrated Legendre) coefficients of the element
-interiors. Everything that does not change between Newton iterations
+interiors. On Hermite elements the first rows are the vertex positions too and
+the next ones the vertex tangents, in the same order (``LineFEM.skfem_dof``
+maps them to scikit-fem's numbering, position and tangent of each vertex in
+turn, for the forms). Everything that does not change between Newton iterations
 (basis values, quadrature, the sparsity pattern and the scatter maps) is
 computed once here, and what only the reference assembly reads (the
 vector bases of the forms, the CSR patterns of the tangent) on its first use:
@@ -26,6 +31,8 @@ import numpy as np
 import scipy.sparse as sp
 from skfem import Basis, ElementLineP1, ElementLineP2, ElementLinePp, ElementVector, MeshLine
 from skfem.quadrature import get_quadrature_line
+
+from cablefem.fem.hermite import LOCAL, ElementLineHermiteLocal, hermite_basis, hermite_tangents, lobatto_line
 
 
 def scalar_element(order):
@@ -75,22 +82,37 @@ class LineFEM:
     def __init__(self, line, quadrature_points=None):
         self.line = line
         self.order = line.order
+        self.hermite = line.hermite
         self.mesh = MeshLine(line.node_arc_lengths())
-        self.element = element = scalar_element(self.order)
+        self.element = element = ElementLineHermiteLocal() if self.hermite else scalar_element(self.order)
         n_gauss = quadrature_points or line.quadrature_points or self.order + 1
         self.scalar_basis = Basis(self.mesh, element, quadrature=_scikit_fem_line_rule(2 * n_gauss - 1))
         sb = self.scalar_basis
         self.n_dofs = sb.N
         self.n_vertices = self.mesh.p.shape[1]
         self.n_elements = self.mesh.t.shape[1]
-        self.element_dofs = np.ascontiguousarray(sb.element_dofs.T)  # (nel, nloc)
-        self.full = Rule(sb)
+        # Hermite: the rows hold the vertex positions, then the vertex tangents (scikit-fem: the
+        # position and the tangent of each vertex in turn); the local DOFs of an element are its
+        # two positions, then its two tangents, as a Lagrange element's vertices come first
+        self.skfem_dof, local = None, None
+        if self.hermite:
+            nv = self.n_vertices
+            self.skfem_dof = np.concatenate([2 * np.arange(nv), 2 * np.arange(nv) + 1])
+            local = np.array([LOCAL.index((0, False)), LOCAL.index((1, False)), LOCAL.index((0, True)),
+                              LOCAL.index((1, True))])
+        self.row_of_skfem_dof = None if self.skfem_dof is None else np.argsort(self.skfem_dof)
+        self.local = local
+        dofs = sb.element_dofs if local is None else self.row_of_skfem_dof[sb.element_dofs[local]]
+        self.element_dofs = np.ascontiguousarray(dofs.T)  # (nel, nloc)
+        self.full = Rule(sb, self.element_dofs, local)
         # the axial term with one Gauss point fewer: a polynomial element cannot follow a
         # curved line at constant stretch, and at full integration a stiff line "locks"
         # (spurious strain of order (kappa h)^2, against T/EA ~ 1e-4); p points remove it. The
         # rule is built here: scikit-fem's line rules have two points at least, and P1's strain
-        # is constant along an element, so its second point only doubled the axial work
-        self.reduced = Rule(Basis(self.mesh, element, quadrature=gauss_line(self.order)))
+        # is constant along an element, so its second point only doubled the axial work.
+        # Hermite: Simpson's rule (``hermite.lobatto_line``), see there
+        reduced_rule = lobatto_line() if self.hermite else gauss_line(self.order)
+        self.reduced = Rule(Basis(self.mesh, element, quadrature=reduced_rule), self.element_dofs, local)
         self.phi, self.dphi, self.dx, self.s = self.full.phi, self.full.dphi, self.full.dx, self.full.s
         self.segment = line.element_segments()  # (nel,)
         self.anchor_dof = 0
@@ -103,6 +125,9 @@ class LineFEM:
         fixed[self.fixed_dofs] = True
         self.free_dofs = np.flatnonzero(~fixed)
         self.free_vector_dofs = (3 * self.free_dofs[:, None] + np.arange(3)).ravel()
+        # the anchor's and the fairlead's tangent rows (Hermite), and the directions clamping them
+        self.tangent_dofs = (self.n_vertices, 2 * self.n_vertices - 1) if self.hermite else ()
+        self.clamped = tuple(line.tangents) if self.hermite else (None, None)
 
     @cached_property
     def basis(self):
@@ -113,6 +138,18 @@ class LineFEM:
     def reduced_basis(self):
         """The vector basis at the reduced rule (scikit-fem forms)."""
         return Basis(self.mesh, ElementVector(self.element, dim=3), quadrature=self.reduced.quadrature)
+
+    def from_skfem(self, rows):
+        """Rows (N, 3) in this FEM's order from rows in scikit-fem's DOF order (the same but on
+        Hermite elements)."""
+        return rows if self.skfem_dof is None else rows[self.skfem_dof]
+
+    def matrix_from_skfem(self, K):
+        """A sparse matrix (3 N, 3 N) over scikit-fem's vector DOFs in this FEM's order."""
+        if self.skfem_dof is None:
+            return K
+        index = (3 * self.skfem_dof[:, None] + np.arange(3)).ravel()
+        return K[index][:, index]
 
     # ------------------------------------------------------------------ maps
     def _entries(self):
@@ -161,6 +198,14 @@ class LineFEM:
         element, _ = self._locate(s)
         return np.einsum("nl,nlc->nc", grads, X[self.element_dofs[element]])
 
+    def second_derivative(self, X, s):
+        """d^2 r/ds^2 (n, 3) of state X at arc lengths s (n,), inside the element holding s
+        (Hermite elements)."""
+        if not self.hermite:
+            raise ValueError("second derivatives are read on Hermite elements")
+        element, _ = self._locate(s)
+        return np.einsum("nl,nlc->nc", self.local_second_basis(s), X[self.element_dofs[element]])
+
     def _locate(self, s):
         s = np.atleast_1d(np.asarray(s, dtype=float))
         nodes = self.mesh.p[0]
@@ -168,9 +213,19 @@ class LineFEM:
         left, right = nodes[self.mesh.t[0, element]], nodes[self.mesh.t[1, element]]
         return element, (s - left) / (right - left)
 
+    def local_second_basis(self, s):
+        """Second s-derivatives of the basis (n, nloc) at arc lengths s (n,), in the element holding
+        each (Hermite elements)."""
+        element, xi = self._locate(s)
+        h = np.diff(self.mesh.p[0])[element]
+        return hermite_basis(xi, h)[2][self.local].T
+
     def _local_basis(self, s):
         element, xi = self._locate(s)
         h = np.diff(self.mesh.p[0])[element]
+        if self.hermite:
+            values, first, _ = hermite_basis(xi, h)
+            return values[self.local].T, first[self.local].T
         el = self.scalar_basis.elem
         vals, grads = [], []
         for i in range(self.phi.shape[0]):
@@ -186,6 +241,8 @@ class LineFEM:
         X[: self.n_vertices] = positions(self.mesh.p[0])
         if self.n_dofs == self.n_vertices:
             return X
+        if self.hermite:
+            return hermite_tangents(self, X, positions)
         target, _ = self.at_quadrature_positions(positions)
         vertex_part, _ = self.at_quadrature(X)
         interior = self.element_dofs[:, 2:]
@@ -201,22 +258,26 @@ class LineFEM:
         return values.T.reshape(3, *self.s.shape), None
 
     # ------------------------------------------------------------- assembly
-    def assemble_vector(self, force=None, flux=None, rule=None):
-        """Residual rows (N, 3): int (flux . phi' - force . phi) ds over all elements, with
-        force and flux (3, nel, nq) at the points of ``rule`` (default: full)."""
+    def assemble_vector(self, force=None, flux=None, rule=None, moment=None):
+        """Residual rows (N, 3): int (flux . phi' - force . phi + moment . phi'') ds over all
+        elements, with force, flux and moment (3, nel, nq) at the points of ``rule`` (default:
+        full; a moment on Hermite elements)."""
         rule = rule or self.full
-        return rule.scatter(None if force is None else -force, flux)
+        return rule.scatter(None if force is None else -force, flux, moment)
 
     def element_matrices(self, value_value=None, value_grad=None, grad_value=None, grad_grad=None,
-                         rule=None, out=None):
-        """Local matrices (nel, nloc, 3, nloc, 3) of int v.(A u + B u') + v'.(C u + D u') ds
-        for the blocks A, B, C, D given as (3, 3, nel, nq) arrays (None for zero) at the
-        points of ``rule``; added to ``out`` when given."""
+                         grad_second=None, second_grad=None, second_second=None, rule=None, out=None):
+        """Local matrices (nel, nloc, 3, nloc, 3) of int v.(A u + B u') + v'.(C u + D u' + E u'')
+        + v''.(F u' + G u'') ds for the blocks A ... G given as (3, 3, nel, nq) arrays (None for
+        zero) at the points of ``rule`` (E, F, G on Hermite elements); added to ``out`` when given."""
         rule = rule or self.full
         nel, nloc = self.element_dofs.shape
         if out is None:
             out = np.zeros((nel, nloc, 3, nloc, 3))
         for block, products in zip((value_value, value_grad, grad_value, grad_grad), rule.products):
+            if block is not None:
+                out += np.einsum("abeq,lmeq->elamb", block, products)
+        for block, products in zip((grad_second, second_grad, second_second), rule.second_products):
             if block is not None:
                 out += np.einsum("abeq,lmeq->elamb", block, products)
         return out
@@ -235,14 +296,18 @@ class LineFEM:
 
 class Rule:
     """Basis values at one quadrature rule: phi, dphi/ds (nloc, nel, nq), weights x Jacobian
-    dx (nel, nq) and the arc lengths s (nel, nq) of the points."""
+    dx (nel, nq) and the arc lengths s (nel, nq) of the points; on Hermite elements also
+    ddphi = d^2 phi/ds^2 (nloc, nel, nq) (None otherwise). ``dofs`` (nel, nloc): the element's rows,
+    its local functions in the order ``local`` picks from scikit-fem's (None: scikit-fem's)."""
 
-    def __init__(self, scalar_basis):
+    def __init__(self, scalar_basis, dofs=None, local=None):
         self.quadrature = scalar_basis.quadrature
-        self.dofs = scalar_basis.element_dofs.T  # (nel, nloc)
+        self.dofs = scalar_basis.element_dofs.T if dofs is None else dofs  # (nel, nloc)
         self.n_dofs = scalar_basis.N
-        self.phi = np.array([np.asarray(b[0]) for b in scalar_basis.basis])
-        self.dphi = np.array([b[0].grad[0] for b in scalar_basis.basis])
+        functions = scalar_basis.basis if local is None else [scalar_basis.basis[i] for i in local]
+        self.phi = np.array([np.asarray(b[0]) for b in functions])
+        self.dphi = np.array([b[0].grad[0] for b in functions])
+        self.ddphi = None if local is None else np.array([b[0].hess[0, 0] for b in functions])
         self.dx = scalar_basis.dx
         self.s = np.asarray(scalar_basis.global_coordinates())[0]
 
@@ -253,6 +318,15 @@ class Rule:
         return [np.einsum("leq,meq,eq->lmeq", a, b, self.dx)
                 for a, b in ((self.phi, self.phi), (self.phi, self.dphi), (self.dphi, self.phi),
                              (self.dphi, self.dphi))]
+
+    @cached_property
+    def second_products(self):
+        """Weighted products (nloc, nloc, nel, nq) with second derivatives: derivative-second,
+        second-derivative, second-second (Hermite elements; empty otherwise)."""
+        if self.ddphi is None:
+            return []
+        return [np.einsum("leq,meq,eq->lmeq", a, b, self.dx)
+                for a, b in ((self.dphi, self.ddphi), (self.ddphi, self.dphi), (self.ddphi, self.ddphi))]
 
     def _operators(self, basis_values):
         """The interpolation operator (nel nq, N) of ``basis_values`` (nloc, nel, nq), CSR, and
@@ -275,17 +349,28 @@ class Rule:
     def _derivative_operators(self):
         return self._operators(self.dphi)
 
+    @cached_property
+    def _second_operators(self):
+        return self._operators(self.ddphi)
+
     def interpolate(self, Y):
         """Values and s-derivatives (nel nq, k) at the rule's points of coefficients Y (N, k)."""
         return self._value_operators[0] @ Y, self._derivative_operators[0] @ Y
 
-    def scatter(self, values, derivatives):
-        """Rows (N, 3): int (derivatives . phi' + values . phi) ds, each (3, nel, nq) or None."""
+    def second(self, Y):
+        """Second s-derivatives (nel nq, k) at the rule's points of coefficients Y (N, k) (Hermite)."""
+        return self._second_operators[0] @ Y
+
+    def scatter(self, values, derivatives, seconds=None):
+        """Rows (N, 3): int (derivatives . phi' + values . phi + seconds . phi'') ds, each
+        (3, nel, nq) or None (``seconds`` on Hermite elements)."""
         out = np.zeros((self.n_dofs, 3))
         if values is not None:
             out += self._value_operators[1] @ values.reshape(3, -1).T
         if derivatives is not None:
             out += self._derivative_operators[1] @ derivatives.reshape(3, -1).T
+        if seconds is not None:
+            out += self._second_operators[1] @ seconds.reshape(3, -1).T
         return out
 
 

@@ -36,6 +36,7 @@ from functools import cached_property
 import numpy as np
 import scipy.sparse.linalg as spla
 
+from cablefem.fem import clamp
 from cablefem.fem.forms import mass_matrix
 
 
@@ -51,9 +52,11 @@ class Evaluator:
 
     @cached_property
     def M(self):
-        """The mass matrix (N 3, N 3), CSR (``forms.mass_matrix``); the compiled kernel carries the
-        mass itself, so there it is assembled only if M A is needed at a nonzero A."""
-        return mass_matrix(self.system, self.lumped)
+        """The mass matrix (N 3, N 3), CSR (``forms.mass_matrix``), its clamped tangent rows projected
+        as the loads' are (``cablefem.fem.clamp``); the compiled kernel carries the mass itself, so
+        there it is assembled only if M A is needed at a nonzero A."""
+        M = mass_matrix(self.system, self.lumped)
+        return clamp.project(self.system.clamps, M, self.system.fem, free_only=False) if self.system.clamps else M
 
     def inertia(self, A):
         """Rows (N, 3) of M A (zeros, without assembling M, at A = 0: a start at rest)."""
@@ -110,7 +113,10 @@ class NumpyEvaluator(Evaluator):
         system = self.system
         blocks, _ = tangent
         static = system.evaluate(system.state(X, V, A, t), jacobian=True)[1]
+        K = system.matrix(blocks) - system.matrix(static) + self.M_free
+        if system.clamps:  # the constraint, which the difference took out
+            K = K + clamp.constraint_matrix(system.clamps, system.fem)
         try:
-            return spla.splu((system.matrix(blocks) - system.matrix(static) + self.M_free).tocsc())
+            return spla.splu(K.tocsc())
         except RuntimeError:
             return None

@@ -7,7 +7,10 @@ weak form of desire2023 Eq. 1 is then
     G(r; v) = int N . v' - f . v ds,
     dG[u; v] = int v . (A u + B u') + v' . (C u + D u') ds,
 
-and the inertia int m a . v ds. These decorated forms assemble it with
+and the inertia int m a . v ds. On Hermite elements a load may also give a
+moment Q against v'' (the bending load, ``cablefem.loads.bending``), which adds
+
+    int Q . v'' ds   and   int v' . E u'' + v'' . (F u' + G u'') ds. These decorated forms assemble it with
 scikit-fem's own machinery on the ``ElementVector`` basis; ``LineFEM`` does
 the same sums with precomputed basis data for speed, and the tests check
 that both agree.
@@ -38,6 +41,19 @@ def tangent(u, v, w):
             + dot(dv, _block(w.C, u) + _block(w.D, du)))
 
 
+@LinearForm
+def moment_vector(v, w):
+    """int Q . v'' ds with w.moment (3, nel, nq) (Hermite elements: v.hess exists)."""
+    return dot(w.moment, v.hess[:, 0, 0])
+
+
+@BilinearForm
+def curvature_tangent(u, v, w):
+    """int v' . E u'' + v'' . (F u' + G u'') ds with blocks w.E, w.F, w.G (3, 3, nel, nq)."""
+    du, dv, ddu, ddv = u.grad[:, 0], v.grad[:, 0], u.hess[:, 0, 0], v.hess[:, 0, 0]
+    return dot(dv, _block(w.E, ddu)) + dot(ddv, _block(w.F, du) + _block(w.G, ddu))
+
+
 @BilinearForm
 def mass(u, v, w):
     """Consistent mass int m u . v ds with w.m [kg/m] of shape (nel, nq)."""
@@ -57,7 +73,11 @@ def mass_matrix(system, lumped=False):
     basis and its zero blocks), or lumped (row sums; order 1 only)."""
     fem = system.fem
     m = system.props["mass"][:, None] * np.ones_like(fem.full.dx)
-    M = _per_component(scalar_mass.assemble(fem.scalar_basis, m=m).tocsr())
+    S = scalar_mass.assemble(fem.scalar_basis, m=m).tocsr()
+    if fem.skfem_dof is not None:  # Hermite: positions, then tangents (``LineFEM``)
+        S = S[fem.skfem_dof][:, fem.skfem_dof]
+        S.sort_indices()
+    M = _per_component(S)
     if lumped:
         if fem.order != 1:
             raise ValueError("a lumped mass needs order 1 elements")

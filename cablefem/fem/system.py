@@ -18,7 +18,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import scipy.sparse as sp
 
-from cablefem.fem import forms
+from cablefem.fem import clamp, forms
 from cablefem.fem.discretisation import LineFEM
 from cablefem.fem.evaluator import NumpyEvaluator
 from cablefem.loads import State, add, catalog
@@ -33,7 +33,7 @@ def element_properties(line):
     types = [seg.type for seg in line.segments]
     index = line.element_segments()
     names = ("diameter", "mass", "EA", "damping", "Cd_normal", "Cd_tangential",
-             "Ca_normal", "Ca_tangential", "area", "damping_when_slack")
+             "Ca_normal", "Ca_tangential", "area", "damping_when_slack", "EI")
     props = {name: np.array([getattr(t, name) for t in types])[index] for name in names}
     props["nominal_diameter"] = np.array([np.nan if t.nominal_diameter is None else t.nominal_diameter
                                           for t in types])[index]
@@ -89,6 +89,7 @@ class LineSystem:
         self.loads = catalog.build_loads(self.setting) + list(extra_loads)
         self.history = _history_records(self.fem)  # {"full": (old, new), "reduced": (old, new)}
         self.reset_history(None)
+        self.clamps = clamp.clamps(self.fem, self.props["EA"])  # the clamped ends' constraints
 
     def load(self, name):
         """The system's load of catalog name ``name`` (the first, if a test added another)."""
@@ -163,6 +164,9 @@ class LineSystem:
             states.append(State(r, dr, v, dv, a, t, old=old, new=new, inv_h=inv_h))
         full, reduced = states
         full.reduced = reduced
+        full.X = X
+        if self.fem.hermite:  # the curvature's r'' at the full points
+            full.ddr = self.fem.full.second(X).T.reshape((3,) + self.fem.full.s.shape)
         vertices = self.line.joint_vertices()
         if len(vertices):  # the joints' own kinematics (3, k), for the node loads
             at = lambda Y: None if Y is None else np.ascontiguousarray(Y[vertices].T)  # noqa: E731
@@ -182,11 +186,15 @@ class LineSystem:
             numpy.M  # a lumped mass checks the element order now, not at the first step
         return numpy
 
-    def evaluate(self, state, jacobian=True, velocity_factor=0.0, acceleration_factor=0.0):
+    def evaluate(self, state, jacobian=True, velocity_factor=0.0, acceleration_factor=0.0, constrained=True):
         """Residual rows (N, 3) of the loads and, with ``jacobian``, the tangent blocks
-        (A, B, C, D) of dG/dX at quadrature points (see ``cablefem.fem.forms``), per rule, where
-        dV/dX = velocity_factor and dA/dX = acceleration_factor (both 0 in statics)."""
-        sums = {}  # rule name -> [force, flux, A, B, C, D]
+        (A, B, C, D, E, F, G) of dG/dX at quadrature points (see ``cablefem.fem.forms``), per rule,
+        where dV/dX = velocity_factor and dA/dX = acceleration_factor (both 0 in statics). A
+        clamped end's tangent row is its constraint (``cablefem.fem.clamp``): its blocks are under
+        "clamp", and an integrator's inertia rows there are projected as these are
+        (``clamp.project``); ``constrained=False`` leaves the loads' own rows there (the clamp's
+        reaction, ``clamp.reaction_moments``)."""
+        sums = {}  # rule name -> [force, flux, moment, A, B, C, D, E, F, G]
         residual = np.zeros((self.fem.n_dofs, 3))
         for load in self.loads:
             rule = getattr(load, "rule", "full")
@@ -194,29 +202,39 @@ class LineSystem:
                 node = self._node_terms(load, state.nodes, jacobian, velocity_factor, acceleration_factor)
                 residual[load.vertices] -= node[0]
                 if node[1] is not None:
-                    sums.setdefault("node", [None] * 6)[2] = node[1]
+                    sums.setdefault("node", [None] * 10)[3] = node[1]
                 continue
             terms = load.evaluate(state.reduced if rule == "reduced" else state, jacobian)
-            acc = sums.setdefault(rule, [None] * 6)
+            acc = sums.setdefault(rule, [None] * 10)
             acc[0], acc[1] = add(acc[0], terms.force), add(acc[1], terms.flux)
+            acc[2] = add(acc[2], terms.moment)
             if not jacobian:
                 continue
             for i, (base, rate, accel, sign) in enumerate((
                     (terms.force_r, terms.force_v, terms.force_a, -1.0),
                     (terms.force_dr, terms.force_dv, None, -1.0),
                     (None, None, None, 1.0),
-                    (terms.flux_dr, terms.flux_dv, None, 1.0))):
+                    (terms.flux_dr, terms.flux_dv, None, 1.0),
+                    (terms.flux_ddr, None, None, 1.0),
+                    (terms.moment_dr, None, None, 1.0),
+                    (terms.moment_ddr, None, None, 1.0))):
                 block = _combine(base, rate, velocity_factor, accel, acceleration_factor)
                 if block is not None:
-                    acc[2 + i] = add(acc[2 + i], sign * block)
+                    acc[3 + i] = add(acc[3 + i], sign * block)
         for rule, acc in sums.items():
             if rule == "node":
                 continue
             if self.assembly == "forms":
-                residual += self._forms_vector(acc[0], acc[1], rule)
+                residual += self._forms_vector(acc[0], acc[1], rule, acc[2])
             else:
-                residual += self.fem.assemble_vector(acc[0], acc[1], self._rule(rule))
-        blocks = {rule: tuple(acc[2:]) for rule, acc in sums.items()} if jacobian else None
+                residual += self.fem.assemble_vector(acc[0], acc[1], self._rule(rule), moment=acc[2])
+        blocks = {rule: tuple(acc[3:]) for rule, acc in sums.items()} if jacobian else None
+        if self.clamps and constrained:
+            if state.X is None:
+                raise ValueError("a line with a clamped end needs the state's rows (LineSystem.state)")
+            clamp.constrain_rows(self.clamps, state.X, residual)
+            if jacobian:
+                blocks["clamp"] = self.clamps
         return residual, blocks
 
     @staticmethod
@@ -247,6 +265,9 @@ class LineSystem:
 
     def matrix(self, blocks, free_only=True):
         """Sparse tangent (CSR) from the blocks returned by ``evaluate``, free DOFs by default."""
+        if "clamp" in blocks:
+            rest = {rule: parts for rule, parts in blocks.items() if rule != "clamp"}
+            return clamp.constrain_matrix(blocks["clamp"], self.matrix(rest, free_only), self.fem, free_only)
         if "node" in blocks:
             node = blocks["node"][0]
             rest = {rule: parts for rule, parts in blocks.items() if rule != "node"}
@@ -258,8 +279,11 @@ class LineSystem:
             for rule, parts in blocks.items():
                 basis = self.fem.reduced_basis if rule == "reduced" else self.fem.basis
                 zero = np.zeros((3, 3) + self._rule(rule).s.shape)
-                A, B, C, D = (zero if b is None else b for b in parts)
+                A, B, C, D, E, F, G = (zero if b is None else b for b in parts)
                 K = K + forms.tangent.assemble(basis, A=A, B=B, C=C, D=D).tocsr()
+                if any(b is not None for b in parts[4:]):
+                    K = K + forms.curvature_tangent.assemble(basis, E=E, F=F, G=G).tocsr()
+            K = self.fem.matrix_from_skfem(K)
             if free_only:
                 free = self.fem.free_vector_dofs
                 K = K[free][:, free]
@@ -269,12 +293,15 @@ class LineSystem:
             local = self.fem.element_matrices(*parts, rule=self._rule(rule), out=local)
         return self.fem.assemble_matrix(local, free_only)
 
-    def _forms_vector(self, force, flux, rule):
+    def _forms_vector(self, force, flux, rule, moment=None):
         basis = self.fem.reduced_basis if rule == "reduced" else self.fem.basis
         zero = np.zeros((3,) + self._rule(rule).s.shape)
         force = zero if force is None else force
         flux = zero if flux is None else flux
-        return forms.load_vector.assemble(basis, force=force, flux=flux).reshape(-1, 3)
+        rows = forms.load_vector.assemble(basis, force=force, flux=flux).reshape(-1, 3)
+        if moment is not None:
+            rows = rows + forms.moment_vector.assemble(basis, moment=moment).reshape(-1, 3)
+        return self.fem.from_skfem(rows)
 
     def energy(self, X):
         """Total potential energy [J] at X (N, 3) of the loads that have one (their numpy face's

@@ -3,8 +3,8 @@
 Sections read: LINE TYPES (v2 columns, or the v1 header read by position as MoorDyn-C reads it),
 BODIES, POINTS, LINES, OPTIONS (value first: ``850 WtrDpth``) and OUTPUTS (channel names, up to
 ``END``, recorded and ignored). Rows before the first recognised ``---`` header are the title
-(``moordyn_sections`` cuts the file). What cablefem does not read (RODS, WaveKin 1, nonlinear
-EA, ...) is refused with what to do instead, from the one list ``moordyn_sections.REFUSED``. Numbers
+(``moordyn_sections`` cuts the file). What cablefem does not read (RODS, WaveKin 4 to 6, Currents 3 and
+4, ...) is refused with what to do instead, from the one list ``moordyn_sections.REFUSED``. Numbers
 and IDs are ASCII (``str.isdigit`` and ``float`` would take other scripts' digits) and within the
 sane limits of ``validate.LIMITS``.
 
@@ -15,10 +15,16 @@ Mapping (each conversion checked against the MoorDyn 2.7 library, docs/scene.md)
   first. Junctions of three or more line ends and free bodies are read as they are: the statics
   solve them (``cablefem.statics.network``), a run refuses what it cannot step (``network.check_no_coupling``);
 - ``Currents 1``: the steady profile of ``current_profile.txt`` beside the file (``io.currents``);
-- ``WaveKin`` 2, 3 and 7: the waves of their files beside the file (``io.moordyn_waves``);
+  ``Currents 2`` and ``5``: a current varying in time (and with ``5`` in x and y) from
+  ``current_profile_dynamic.txt`` or ``current_profile_4d.txt``, which rides on the scene's Sea
+  (``Sea.current``; still water with no WaveKin);
+- ``WaveKin`` 2, 3 and 7: the waves of their files beside the file (``io.moordyn_waves``); ``WaveKin 1``
+  (kinematics through MoorDyn-C's API, still water until a program sets them): still water, with a note;
 - BA >= 0 is the internal damping coefficient [N s]: beta = BA / EA [s];
   BA < 0 is -zeta, MoorDyn's BA = zeta (UnstrLen / NumSegs) sqrt(EA m);
 - CdAx refers to the surface area pi d l, desire2023 Eq. 3 to d: Cd_tangential = pi CdAx;
+- EI > 0: the line is read on Hermite elements (``cablefem.loads.bending``), NumSegs elements;
+  MoorDyn lumps EI as couples between neighbouring nodes, cablefem integrates 1/2 EI kappa^2;
 - kBot, cBot -> Contact.stiffness [N/m^3], Contact.damping [N s/m^3], with MoorDyn-C's damper
   acting on penetrating nodes moving out too (Contact.damping_when_opening);
 - MoorDyn-C friction is isotropic saturated damping (housner2022 Sec. 2.2 with one
@@ -47,9 +53,11 @@ from cablefem.model import defaults as by_physics
 from cablefem.model.scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
 from cablefem.io import validate as v
 from cablefem.io.axial_input import is_law, moordyn_law
-from cablefem.io.currents import MOORDYN_FILE, read_current_profile
+from cablefem.io.currents import GRID_FILES, MOORDYN_FILE, read_current_grid, read_current_profile
 from cablefem.io.moordyn_waves import DT_WAVE, read_wave_kin
+from cablefem.waves import Sea
 from cablefem.io.moordyn_network import line_end, read_bodies, read_points
+from cablefem.io.failures import read_moordyn_failures
 from cablefem.io.moordyn_sections import (TABLE_COLUMNS, at as _at, parse_sections, refuse, split_sections,
     value as _value)
 
@@ -99,7 +107,8 @@ def _line_types(rows, v1, notes):
         if law:  # read per line (BA = -zeta depends on the line's segments): _line_type
             values["law"] = (fields[3], fields[4])
         if values["EI"] != 0.0:
-            notes.append(f"LINE TYPES.{name}: EI = {values['EI']:g} N m^2 ignored (no bending stiffness)")
+            notes.append(f"LINE TYPES.{name}: EI = {values['EI']:g} N m^2: its lines are read on Hermite elements "
+                         "(positions and tangents at the nodes), NumSegs elements each, pinned at both ends")
         if any(is_number(f) and float(f) != 0.0 for f in fields[10:]):
             notes.append(f"LINE TYPES.{name}: columns after CaAx ignored ({' '.join(fields[10:])})")
         types[name] = (number, values)
@@ -186,18 +195,27 @@ def raw_option(raw, lower):
     return next(text for name, text in raw.items() if name.lower() == lower)
 
 
-def _current_profile(path, options, numbers, notes):
-    """The CurrentProfile of ``Currents 1`` (current_profile.txt beside the file), or None."""
+def _currents(path, options, numbers, notes):
+    """The CurrentProfile of ``Currents 1`` (current_profile.txt beside the file) and the CurrentGrid of
+    ``Currents 2`` or ``5`` (their files beside it; ``io.currents.read_current_grid``), each or None."""
     mode = options.get("currents", 0.0)
     if mode == 0.0:
-        return None
+        return None, None
     key = _at(numbers["currents"], "OPTIONS.Currents")
-    if mode != 1.0:
+    if mode not in (1.0, 2.0, 5.0):
         refuse("Currents", key, f"Currents {mode:g}")
-    file = v.existing_file(MOORDYN_FILE, f"{key} ({MOORDYN_FILE})", os.path.dirname(path))
-    profile = read_current_profile(file, key)
-    notes.append(f"Currents 1: a steady current profile of {len(profile.z)} heights from {file}")
-    return profile
+    name = MOORDYN_FILE if mode == 1.0 else GRID_FILES[int(mode)]
+    file = v.existing_file(name, f"{key} ({name})", os.path.dirname(path))
+    if mode == 1.0:
+        profile = read_current_profile(file, key)
+        notes.append(f"Currents 1: a steady current profile of {len(profile.z)} heights from {file}")
+        return profile, None
+    grid = read_current_grid(int(mode), file, key)
+    nx, ny, nz, nt = grid.velocity.shape[:4]
+    notes.append(f"Currents {mode:g}: a current varying in time from {file} ({nx} x {ny} x {nz} points, {nt} "
+                 f"times every {grid.dt:g} s), interpolated as MoorDyn-C interpolates it; its acceleration is "
+                 "zero, as MoorDyn-C has it")
+    return None, grid
 
 
 def _waves(path, options, numbers, depth, gravity, read, notes):
@@ -207,6 +225,11 @@ def _waves(path, options, numbers, depth, gravity, read, notes):
     if mode == 0.0:
         return None
     key = _at(numbers["wavekin"], "OPTIONS.WaveKin")
+    if mode == 1.0 and read:
+        notes.append("WaveKin 1: MoorDyn-C takes the waves through its API (ExternalWaveKinSet) and has still water "
+                     "until a program sets them; a file alone is run in still water, as MoorDyn-C runs it (give "
+                     "[waves] in a TOML that wraps the file for waves)")
+        return None
     if not read:
         notes.append(f"WaveKin {mode:g} of {os.path.basename(path)} replaced by the TOML's [waves]")
         return None
@@ -266,13 +289,14 @@ def _build(path, text, simplify=True, waves=True, defaults=True):
     if found["OUTPUTS"]:
         notes.append(f"OUTPUTS ignored: {' '.join(f for _, fields in found['OUTPUTS'] for f in fields)}")
     get = lambda name: options.get(name, OPTION_DEFAULTS.get(name))  # noqa: E731
-    environment = Environment(water_density=get("wtrdnsty"), gravity=get("g"),
-                              current_profile=_current_profile(path, options, options_rows, notes))
+    profile, current_grid = _currents(path, options, options_rows, notes)
+    environment = Environment(water_density=get("wtrdnsty"), gravity=get("g"), current_profile=profile)
     scene_points = {point.name: point for _, point in points.values()}
     scene_bodies = {body.name: body for _, body in bodies.values()}
     syrope_ic, syrope_rows = _syrope_ic(found["SYROPE IC"], raw_lines, raw_types)
     lines, keys = _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, notes, syrope_ic,
                            syrope_rows)
+    failures = read_moordyn_failures(found["FAILURE"], raw_lines, points, lines, _at)
     if seafloor is not None:
         keys["seabed"] = (path, _at(seafloor[1], "OPTIONS.SeafloorFile"))
         file = named_file(seafloor[0], keys["seabed"][1], os.path.dirname(path))
@@ -284,7 +308,10 @@ def _build(path, text, simplify=True, waves=True, defaults=True):
         raise InputError("missing: needed for the seabed unless SeafloorFile is given", key="OPTIONS.WtrDpth")
     # MoorDyn-C's waves see WtrDpth, or the seafloor grid's average depth
     depth = -float(np.mean(seabed.z)) if seafloor is not None else options.get("wtrdpth", 0.0)
-    environment = replace(environment, waves=_waves(path, options, options_rows, depth, get("g"), waves, notes))
+    sea = _waves(path, options, options_rows, depth, get("g"), waves, notes)
+    if current_grid is not None:  # the current adds to the waves' velocity
+        sea = Sea.current_only(current_grid, depth, get("g")) if sea is None else replace(sea, current=current_grid)
+    environment = replace(environment, waves=sea)
     contact = Contact(stiffness=get("kbot"), damping=get("cbot"), damping_when_opening=True)
     seabed, seabed_note = choose_seabed(seabed, lines, simplify)
     friction = _friction(get, lines[0], environment, notes)
@@ -310,7 +337,7 @@ def _build(path, text, simplify=True, waves=True, defaults=True):
     return Scene(name=os.path.splitext(os.path.basename(path))[0], lines=lines, seabed=seabed,
                  contact=contact, environment=environment, friction=friction, solver=solver,
                  output=output, source=path, notes=notes, moordyn_options=raw_options, keys=keys, points=scene_points,
-                 bodies=scene_bodies)
+                 bodies=scene_bodies, failures=failures)
 
 
 def _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, notes, syrope_ic=None, syrope_rows=None):
@@ -335,7 +362,8 @@ def _network(path, raw_lines, raw_types, points, scene_points, scene_bodies, not
             section = "SYROPE IC" if raw["id"] in syrope_rows else "LINES"
             raise InputError(error.reason, key=_at(where, f"{section}.{raw['id']}")) from None
         a, b = (point_position(scene_points[name], scene_bodies) for name in raw["ends"])
-        parts.append(Line(raw["id"], a, b, [segment], ends=tuple(raw["ends"])))
+        element = "hermite" if segment.type.EI > 0 else "lagrange"  # bending needs C1 elements
+        parts.append(Line(raw["id"], a, b, [segment], ends=tuple(raw["ends"]), element=element))
 
     def where(key):  # a key of network.strings' errors, as it stands in the file
         if key.startswith("points."):
@@ -383,7 +411,7 @@ def _line_type(raw, raw_types, built, folder, notes):
     if name not in built:  # values were checked by _line_types
         built[name] = LineType(name, props["Diam"], props["MassDen"], EA, beta,
                                Cd_normal=props["Cd"], Cd_tangential=math.pi * props["CdAx"],
-                               Ca_normal=props["Ca"], Ca_tangential=props["CaAx"],
+                               Ca_normal=props["Ca"], Ca_tangential=props["CaAx"], EI=props["EI"],
                                damping_when_slack=True, axial=law)  # MoorDyn-C's own law (Line.cpp, Td[i])
     return built[name]
 

@@ -45,14 +45,14 @@ REFUSED = {
              "model a rod as a short stiff line between two points, or fix its line ends to a body (BodyN points)"),
     "ROD TYPES": ("ROD TYPES (properties of RODS)",
                   "model a rod as a short stiff line between two points, or fix its line ends to a body"),
-    "FAILURE": ("FAILURE (line breakage during a run)", "run the intact and the broken system as two scenes"),
-    "WaveKin": ("wave kinematics other than WaveKin 0, 2, 3 and 7 (1: set through MoorDyn's API; 4 to 6: not "
-                "implemented in MoorDyn-C either)",
+    "WaveKin": ("wave kinematics other than WaveKin 0, 1, 2, 3 and 7 (4 to 6: not implemented in MoorDyn-C "
+                "either)",
                 "give the waves as [waves] in a TOML that wraps the file, or write them as wave_frequencies.txt "
                 "with WaveKin 7"),
-    "Currents": ("a time-varying or gridded current (Currents 2 to 5)",
-                 "give a steady profile: Currents 1 with current_profile.txt, or [environment] current_profile "
-                 "in a TOML that wraps the file"),
+    "Currents": ("MoorDyn-C's node approach to currents (Currents 3 and 4, for which MoorDyn-C 2.7 builds no "
+                 "current)",
+                 "give the current on a grid: Currents 1 (current_profile.txt), 2 (current_profile_dynamic.txt) or "
+                 "5 (current_profile_4d.txt)"),
     "turbine": ("points on a FAST.Farm turbine (TurbineN, MoorDyn-F)",
                 "attach them to a coupled body (BodyN) of BODIES, or make them Coupled points"),
 }
@@ -117,9 +117,9 @@ def _table_rows(section, rows, v1):
 
 def parse_sections(sections):
     """Raw tables of a split file by section (LINE TYPES, BODIES, POINTS, LINES: rows of fields;
-    OPTIONS, OUTPUTS: rows) and "v1": {section: the rows of its v1 headers} (LINE TYPES, LINES)."""
+    OPTIONS, OUTPUTS, SYROPE IC, FAILURE: rows) and "v1": {section: the rows of its v1 headers} (LINE TYPES, LINES)."""
     found = {"LINE TYPES": [], "BODIES": [], "POINTS": [], "LINES": [], "OPTIONS": [], "OUTPUTS": [], "v1": {},
-             "SYROPE IC": []}
+             "SYROPE IC": [], "FAILURE": []}
     recognised = False
     for name, title, number, rows in sections:
         if name is None:
@@ -133,6 +133,8 @@ def parse_sections(sections):
             found[name] += _table_rows(name, rows, found["v1"])
         elif name in ("OPTIONS", "OUTPUTS"):
             found[name] += rows
+        elif name == "FAILURE":  # two rows of column names and units, then FailureID Point Line(s) FailTime FailTen
+            found[name] += [(n, f) for n, f in rows if sum(is_number(x) for x in f) >= 2]
         elif name == "SYROPE IC":  # up to two rows of column names and units, then 'Line(s) Tmax0 Tmean0'
             found[name] += [(n, f) for n, f in rows if len(f) >= 2 and is_number(f[1])]
         elif any(sum(is_number(f) for f in fields) >= 1 for _, fields in rows):

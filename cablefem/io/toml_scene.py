@@ -22,19 +22,20 @@ except ModuleNotFoundError:  # Python 3.10
 from cablefem.errors import InputError
 from cablefem.geometry import Horizontal, Plane, choose_seabed
 from cablefem.geometry.readers import MAX_COORDINATE
-from cablefem.model.line import Line, LineType, Segment
+from cablefem.model.line import ELEMENTS, Line, LineType, Segment
 from cablefem.dynamics.registry import INTEGRATORS
 from cablefem.model import defaults as by_physics
 from cablefem.model.scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
 from cablefem.io import axial_input, validate as v
 from cablefem.io.currents import current_profile_setting
+from cablefem.io.failures import read_toml_failures
 from cablefem.io.moordyn_input import BODY_NO_MOTION_NOTE, NO_MOTION_NOTE, read_moordyn
 from cablefem.io.toml_network import body_motions, end, read_bodies, read_points
 from cablefem.io.waves import read_waves
 from cablefem.model.network import point_position, strings as network_strings
 
 TOP_LEVEL_KEYS = ("name", "environment", "line_types", "lines", "seabed", "friction",
-                  "motion", "solver", "output", "moordyn", "points", "bodies", "waves")
+                  "motion", "solver", "output", "moordyn", "points", "bodies", "waves", "failures")
 SEABED_KINDS = ("horizontal", "plane", "grid", "mesh", "points")
 #: the key that places each kind of seabed (named by the scene-level checks)
 SEABED_KEY = {"horizontal": "depth", "plane": "point", "grid": "file", "mesh": "file", "points": "file"}
@@ -69,9 +70,10 @@ LINE_TYPE_KEYS = {"diameter": v.limited(v.positive, "diameter"), "mass": v.limit
                   "BA_dynamic": v.limited(v.non_negative, "internal_damping"), "syrope": axial_input.toml_syrope,
                   "Cd_normal": _COEFFICIENT, "Cd_tangential": _COEFFICIENT, "Ca_normal": _COEFFICIENT,
                   "Ca_tangential": _COEFFICIENT, "damping_when_slack": v.boolean,
-                  "nominal_diameter": v.limited(v.positive, "diameter")}
+                  "nominal_diameter": v.limited(v.positive, "diameter"), "EI": v.limited(v.non_negative, "EI")}
 LINE_KEYS = {"name": v.text, "anchor": lambda value, key: value, "fairlead": lambda value, key: value,
-             "segments": v.tables, "order": _ORDER, "quadrature_points": v.whole}  # an end: coordinates or a point's name (toml_network.end)
+             "segments": v.tables, "order": _ORDER, "quadrature_points": v.whole,  # an end: coordinates or a point's name (toml_network.end)
+             "element": v.choice(ELEMENTS), "anchor_tangent": v.vector3, "fairlead_tangent": v.vector3}
 SEGMENT_KEYS = {"type": v.text, "length": _LENGTH, "elements": _ELEMENTS, "syrope": axial_input.toml_initial}
 CONTACT_KEYS = {"stiffness": v.limited(v.positive, "stiffness"),
                 "damping_ratio": v.limited(v.non_negative, "damping_ratio"),
@@ -136,9 +138,11 @@ def read_toml_scene(path, data=None):
     else:
         bodies = read_bodies(data["bodies"], folder) if "bodies" in data else {}
         points = read_points(data["points"], bodies) if "points" in data else {}
-        lines = _lines(data["lines"], _line_types(data["line_types"]), points, bodies)
-        if points or bodies:
-            lines = network_strings(lines, points, bodies)
+        written = _lines(data["lines"], _line_types(data["line_types"]), points, bodies)
+        lines = network_strings(written, points, bodies) if points or bodies else written
+    # a failure names a line as [[lines]] wrote it, or as cablefem names a MoorDyn file's lines
+    failures = read_toml_failures(data["failures"], lines, None if base else written) if "failures" in data \
+        else (base.failures if base else ())
     environment = _environment(data, base, folder)
     seabed, contact, simplify = _seabed(data.get("seabed", {}), folder, base)
     kind = data.get("seabed", {}).get("kind")
@@ -166,7 +170,7 @@ def read_toml_scene(path, data=None):
     return Scene(name=name, lines=lines, seabed=seabed, contact=contact, environment=environment,
                  friction=friction, motion=motion, solver=solver, output=output, source=path,
                  notes=notes, moordyn_options=dict(base.moordyn_options) if base else {}, keys=keys,
-                 load_settings=load_settings, points=points, bodies=bodies)
+                 load_settings=load_settings, points=points, bodies=bodies, failures=failures)
 
 
 def _environment(data, base, folder):
@@ -269,9 +273,14 @@ def _lines(raw, types, points=None, bodies=None):
         (anchor, a), (fairlead, b) = (end(values[key], f"{prefix}.{key}", points) for key in ("anchor", "fairlead"))
         anchor = anchor if a is None else point_position(points[a], bodies)
         fairlead = fairlead if b is None else point_position(points[b], bodies)
+        element = values.get("element", "lagrange")
+        if element == "hermite" and values.get("order", 3) != 3:
+            raise InputError(f"Hermite elements are cubic (order 3); leave order out, got {values['order']}",
+                             key=f"{prefix}.order")
         try:
             line = Line(name, anchor, fairlead, segments, values.get("order", 1), ends=(a, b),
-                        quadrature_points=values.get("quadrature_points", 0))
+                        quadrature_points=values.get("quadrature_points", 0), element=element,
+                        tangents=(values.get("anchor_tangent"), values.get("fairlead_tangent")))
         except InputError as error:
             raise error.within(prefix=prefix) from None
         lines.append(v.check_chord(line, prefix) if (a, b) == (None, None) else line)

@@ -27,6 +27,7 @@ LIMITS = {
     "diameter": (10.0, "m", "the largest lines, buoyancy modules included, are ~2 m"),
     "mass": (1e5, "kg/m", "the heaviest chains are ~1e3 kg/m"),
     "EA": (1e13, "N", "the stiffest real lines are ~1e10-1e11 N"),
+    "EI": (1e13, "N m^2", "steel risers and umbilicals are ~1e4-1e8 N m^2"),
     "damping_time": (1e6, "s", "beta is ~1e-3 to 1 s"),
     "internal_damping": (1e13, "N s", "MoorDyn's BA of synthetic ropes' slow parts is ~1e9-1e11 N s"),
     "slope": (1e4, "", "a rope's EA_D_Lm (dynamic stiffness per mean tension) is ~0.1-100"),

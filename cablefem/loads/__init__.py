@@ -3,8 +3,10 @@
 A load is an object with ``evaluate(state, jacobian) -> Terms``: it takes the
 kinematics at the quadrature points and returns a force per unit unstretched
 length (entering the weak form as -int f . phi ds) and/or a flux (the
-internal force, entering as int N . phi' ds), with their derivatives when
-``jacobian`` is true. The solver knows nothing of which loads exist.
+internal force, entering as int N . phi' ds) and, on Hermite elements, a
+moment (entering as int Q . phi'' ds: the bending load), with their
+derivatives when ``jacobian`` is true. The solver knows nothing of which
+loads exist.
 """
 
 from dataclasses import dataclass, field
@@ -17,7 +19,9 @@ class State:
     """Kinematics at quadrature points, each (3, n_elements, n_quadrature) [SI].
 
     r: position, dr: dr/ds; v, dv: velocity and its s-derivative (None in
-    statics); a: acceleration (None unless an integrator supplies it); t: time [s].
+    statics); a: acceleration (None unless an integrator supplies it); t: time [s]; ddr:
+    d^2 r/ds^2 at the full points of a line on Hermite elements (None otherwise); X: the state's
+    rows (N, 3) it was interpolated from (the clamped ends' constraint reads them).
     A load evaluated at the reduced quadrature (``rule = "reduced"``) gets ``reduced``, a load at
     vertices (``rule = "node"``) ``nodes``: the same kinematics (3, k) at the line's joints.
     old, new: the history of the points (record arrays (nel, nq) of the catalog's history
@@ -41,15 +45,18 @@ class State:
     new: np.ndarray | None = None
     handed: dict = field(default_factory=dict)
     inv_h: float = 0.0
+    ddr: np.ndarray | None = None
+    X: np.ndarray | None = None
 
 
 @dataclass
 class Terms:
     """What a load contributes at quadrature points.
 
-    force, flux: (3, nel, nq). Jacobian blocks (3, 3, nel, nq), block[a, b] =
-    d(component a) / d(variable b): force_r, force_dr, force_v, force_dv,
-    force_a, flux_dr, flux_dv. None means zero.
+    force, flux, moment: (3, nel, nq) (the moment against phi'', Hermite elements only). Jacobian
+    blocks (3, 3, nel, nq), block[a, b] = d(component a) / d(variable b): force_r, force_dr,
+    force_v, force_dv, force_a, flux_dr, flux_dv, flux_ddr, moment_dr, moment_ddr (ddr: r'').
+    None means zero.
     """
 
     force: np.ndarray | None = None
@@ -61,6 +68,10 @@ class Terms:
     force_a: np.ndarray | None = None
     flux_dr: np.ndarray | None = None
     flux_dv: np.ndarray | None = None
+    moment: np.ndarray | None = None
+    flux_ddr: np.ndarray | None = None
+    moment_dr: np.ndarray | None = None
+    moment_ddr: np.ndarray | None = None
 
 
 def unit_tangent(dr):

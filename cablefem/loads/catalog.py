@@ -27,10 +27,11 @@ RULES = ("full", "reduced", "node")
 
 
 def _default():
-    from cablefem.loads import added_mass, contact, drag, friction, gravity, morison, points, rope, soil, tension
+    from cablefem.loads import (added_mass, bending, contact, drag, friction, gravity, morison, points, rope, soil,
+                                tension)
 
-    return [tension.SPEC, rope.SPEC, gravity.SPEC, contact.SPEC, friction.SPEC, soil.SPEC, drag.SPEC,
-            added_mass.SPEC, morison.SPEC, points.SPEC]
+    return [tension.SPEC, rope.SPEC, bending.SPEC, gravity.SPEC, contact.SPEC, friction.SPEC, soil.SPEC,
+            drag.SPEC, added_mass.SPEC, morison.SPEC, points.SPEC]
 
 
 CATALOG = _default()

@@ -21,6 +21,11 @@ l[i] qs[i]``, only the elastic part zeroed when slack),
 
 where the damping part acts in slack segments too and may push. MoorDyn input
 files are read with it, so that both codes run the same physics.
+
+A line type that bends (EI > 0, ``cablefem.loads.bending``) is a rod: its elements push too,
+T = EA (e + beta de/dt) for every e (``rod``). Without it a straight bending line would have no
+axial stiffness at zero strain, and a bent one under no axial load (an arc under an end moment)
+none at all; MoorDyn's lines never push, whatever their EI (its rods do).
 """
 
 import numpy as np
@@ -59,9 +64,11 @@ class Tension:
     name = "tension"
     rule = "reduced"
 
-    def __init__(self, EA, beta=None, compression=False, slack_damping=None):
+    def __init__(self, EA, beta=None, compression=False, slack_damping=None, rod=None):
         self.EA = np.asarray(EA, dtype=float)[:, None]
         self.compression = compression  # True: T = EA e also for e < 0 (a statics start-up aid)
+        # per element: pushes always (a line type with EI > 0), None if no element does
+        self.rod = np.asarray(rod, dtype=bool)[:, None] if rod is not None and np.any(rod) else None
         beta = None if beta is None else np.asarray(beta, dtype=float)[:, None]
         self.beta = beta if beta is not None and np.any(beta > 0) else None
         # per element: MoorDyn-C's law, the damping part acting in slack segments too
@@ -76,14 +83,17 @@ class Tension:
         rate = np.einsum("ceq,ceq->eq", t, dv) if damped else 0.0  # de/dt
         T = self.EA * (e + (self.beta * rate if damped else 0.0))
         active = np.full(e.shape, True) if self.compression else (e > 0.0) & (T > 0.0)
+        if self.rod is not None:
+            active = active | self.rod
         T = np.where(active, T, 0.0)
         elastic = damping = active.astype(float)  # where each part of T acts
         if self.slack_damping is not None and damped and not self.compression:
             # MoorDyn-C: the elastic part is zero when slack, the damping part acts always
             moordyn = self.EA * (np.maximum(e, 0.0) + self.beta * rate)
-            T = np.where(self.slack_damping, moordyn, T)
-            elastic = np.where(self.slack_damping, (e > 0.0).astype(float), elastic)
-            damping = np.where(self.slack_damping, 1.0, damping)
+            law = self.slack_damping if self.rod is None else self.slack_damping & ~self.rod
+            T = np.where(law, moordyn, T)
+            elastic = np.where(law, (e > 0.0).astype(float), elastic)
+            damping = np.where(law, 1.0, damping)
         terms = Terms(flux=T * t)
         if not jacobian:
             return terms
@@ -101,6 +111,8 @@ class Tension:
         """Strain energy density EA e^2 / 2 [J/m] (nel, nq) of the elastic part (statics)."""
         e, _ = strain(state.dr)
         stretched = e if self.compression else np.maximum(e, 0.0)
+        if self.rod is not None and not self.compression:
+            stretched = np.where(self.rod, e, stretched)
         return 0.5 * self.EA * stretched**2
 
     def params(self):
@@ -109,7 +121,8 @@ class Tension:
         nel = self.EA.shape[0]
         beta = np.zeros(nel) if self.beta is None else self.beta[:, 0]
         slack = np.zeros(nel, dtype=bool) if self.slack_damping is None else self.slack_damping[:, 0]
-        return {"EA": self.EA[:, 0], "beta": beta, "pushes": np.full(nel, self.compression), "slack_damping": slack}
+        pushes = np.full(nel, self.compression) if self.rod is None else self.compression | self.rod[:, 0]
+        return {"EA": self.EA[:, 0], "beta": beta, "pushes": pushes, "slack_damping": slack}
 
 
 @njit(cache=True, _nrt=False)
@@ -166,9 +179,11 @@ def tension_hold(base, state, hold, p, again):
 
 def build(setting):
     """Every line carries its tension, with each line type's damping law (EA = 0 on the elements of
-    a line type with an axial law of its own: ``cablefem.loads.rope`` carries them)."""
+    a line type with an axial law of its own: ``cablefem.loads.rope`` carries them); a line type
+    that bends pushes."""
     props = setting.props
-    return Tension(props["EA"] * ~props["rope"], props["damping"], slack_damping=props["damping_when_slack"])
+    return Tension(props["EA"] * ~props["rope"], props["damping"], slack_damping=props["damping_when_slack"],
+                   rod=props["EI"] > 0.0)
 
 
 SPEC = LoadSpec("tension", "reduced", (("EA", "f8"), ("beta", "f8"), ("pushes", "?"), ("slack_damping", "?")),

@@ -17,6 +17,8 @@ from cablefem.model.axial import AxialLaw
 #: touchdown's kink to ~4e-5 of the contact force, 8 to ~8e-5 (tests/test_quadrature_points.py);
 #: each point costs a point of every full-point load
 MAX_QUADRATURE_POINTS = 16
+#: the element kinds of a line: Lagrange P1, P2, ... or the C1 cubic Hermite (``cablefem.fem.hermite``)
+ELEMENTS = ("lagrange", "hermite")
 
 
 def _positive(value, key, allow_zero=False):
@@ -58,7 +60,8 @@ class LineType:
     diameter d_b [m] that the soil's resistance scales with (rui2025 Eq. 3; None: not given, and
     a scene with ``[soil]`` refuses it). ``axial``: another axial law (``cablefem.model.axial``: a
     strain-tension table, a viscoelastic rope, SYROPE; ``cablefem.loads.rope``), with ``EA`` its
-    reference stiffness (``AxialLaw.reference_EA``) and its own damping (``damping`` 0).
+    reference stiffness (``AxialLaw.reference_EA``) and its own damping (``damping`` 0). ``EI`` is
+    the bending stiffness [N m^2] (``cablefem.loads.bending``; > 0 needs a line on Hermite elements).
     """
 
     name: str
@@ -73,13 +76,14 @@ class LineType:
     damping_when_slack: bool = False
     nominal_diameter: float | None = None
     axial: AxialLaw | None = None
+    EI: float = 0.0
 
     def __post_init__(self):
         for key in ("diameter", "mass", "EA"):
             object.__setattr__(self, key, _positive(getattr(self, key), key))
         if self.nominal_diameter is not None:
             object.__setattr__(self, "nominal_diameter", _positive(self.nominal_diameter, "nominal_diameter"))
-        for key in ("damping", "Cd_normal", "Cd_tangential", "Ca_normal", "Ca_tangential"):
+        for key in ("damping", "Cd_normal", "Cd_tangential", "Ca_normal", "Ca_tangential", "EI"):
             object.__setattr__(self, key, _positive(getattr(self, key), key, allow_zero=True))
         if not isinstance(self.damping_when_slack, (bool, np.bool_)):
             raise InputError(f"expected true or false, got {self.damping_when_slack!r}", key="damping_when_slack")
@@ -168,7 +172,11 @@ class Line:
     ``prescribed``: whether the anchor and the fairlead end have prescribed positions (the default)
     or are unknowns (a free end, or an end the network solves for). ``ends``: the names of the
     network's points at the two ends (``cablefem.model.network``), None for a line's own anchor (fixed)
-    and fairlead (following the scene's motion).
+    and fairlead (following the scene's motion). ``element``: "lagrange" (``order`` as given) or
+    "hermite", scikit-fem's C1 cubic Hermite with positions and tangents r'(s) at the vertices
+    (``order`` is then 3), which a line type with EI > 0 needs (``cablefem.loads.bending``).
+    ``tangents``: the directions (3,) that clamp the anchor's and the fairlead's tangent, None for
+    a pinned end (Hermite only; the magnitude |r'| = 1 + strain stays free).
     """
 
     name: str
@@ -180,6 +188,8 @@ class Line:
     prescribed: tuple = (True, True)
     ends: tuple = (None, None)
     quadrature_points: int = 0
+    element: str = "lagrange"
+    tangents: tuple = (None, None)
 
     def __post_init__(self):
         object.__setattr__(self, "anchor", _point(self.anchor, "anchor"))
@@ -190,6 +200,7 @@ class Line:
         object.__setattr__(self, "segments", segments)
         if isinstance(self.order, bool) or not isinstance(self.order, (int, np.integer)) or self.order < 1:
             raise InputError(f"must be a whole number >= 1, got {self.order!r}", key="order")
+        self._check_element(segments)
         q = self.quadrature_points
         if isinstance(q, bool) or not isinstance(q, (int, np.integer)) or (q != 0 and not
                                                                          self.order + 1 <= q <= MAX_QUADRATURE_POINTS):
@@ -202,6 +213,39 @@ class Line:
         object.__setattr__(self, "joints", tuple(sorted(joints, key=lambda item: item[0])))
         object.__setattr__(self, "prescribed", tuple(bool(p) for p in self.prescribed))
         object.__setattr__(self, "ends", tuple(self.ends))
+
+    def _check_element(self, segments):
+        """The element kind, the order it implies, EI against it and the clamped ends' directions."""
+        if self.element not in ELEMENTS:
+            raise InputError(f"must be one of {', '.join(ELEMENTS)}, got {self.element!r}", key="element")
+        if self.element == "hermite":
+            object.__setattr__(self, "order", 3)
+        else:
+            bent = next((seg.type.name for seg in segments if seg.type.EI > 0), None)
+            if bent is not None:
+                raise InputError(f"line type '{bent}' has EI > 0: bending needs element = \"hermite\"",
+                                 key="element")
+        tangents = tuple(self.tangents)
+        if len(tangents) != 2:
+            raise InputError("expected the anchor's and the fairlead's tangent", key="tangents")
+        clamped = []
+        for key, tangent in zip(("anchor_tangent", "fairlead_tangent"), tangents):
+            if tangent is None:
+                clamped.append(None)
+                continue
+            if self.element != "hermite":
+                raise InputError("a clamped end needs element = \"hermite\" (tangents are its unknowns)", key=key)
+            direction = _point(tangent, key)
+            size = float(np.linalg.norm(direction))
+            if size == 0.0:
+                raise InputError("must be a direction, got the zero vector", key=key)
+            clamped.append(direction / size)
+        object.__setattr__(self, "tangents", tuple(clamped))
+
+    @property
+    def hermite(self):
+        """Whether the line is on Hermite elements (positions and tangents as unknowns)."""
+        return self.element == "hermite"
 
     def joint_vertices(self):
         """Vertex index (k,) of each joint, in ``joints`` order."""
@@ -250,7 +294,7 @@ class Line:
         return replace(self, segments=segments, joints=joints)
 
     def with_order(self, order):
-        """The same line with another element order."""
+        """The same line with another element order (a line on Hermite elements stays on them)."""
         return replace(self, order=order)
 
     def with_quadrature_points(self, points):

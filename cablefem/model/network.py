@@ -249,7 +249,7 @@ def _reversed(line):
     n = len(line.segments)
     return replace(line, anchor=line.fairlead, fairlead=line.anchor, segments=line.segments[::-1],
                    joints=tuple((n - k, joint) for k, joint in line.joints), prescribed=line.prescribed[::-1],
-                   ends=line.ends[::-1])
+                   ends=line.ends[::-1], tangents=tuple(None if d is None else -d for d in line.tangents[::-1]))
 
 
 #: which end of a string is its anchor: the lower rank (a fixed point first, a moving one last)
@@ -332,8 +332,12 @@ def _string(parts, points, bodies, at_point):
         if kind == "free" and points[name].joint.loaded:  # a free end carries its point
             joints.append((0 if e == 0 else n, points[name].joint))
     prescribed = tuple(kind not in ("free", "junction") for kind in kinds)
+    # one element kind along a string: Hermite if any of its lines bends (a chain on Hermite elements
+    # is the chain with EI = 0); the tangent is continuous through the series points between them
+    element = "hermite" if any(part.hermite for part in parts) else parts[0].element
     return Line("+".join(p.name for p in parts), parts[0].anchor, parts[-1].fairlead, tuple(segments),
-                parts[0].order, joints=tuple(joints), prescribed=prescribed, ends=ends)
+                parts[0].order, joints=tuple(joints), prescribed=prescribed, ends=ends, element=element,
+                tangents=(parts[0].tangents[0], parts[-1].tangents[1]))
 
 
 def coupling(lines, points, bodies):

@@ -130,6 +130,7 @@ class Scene:
     load_settings: dict = field(default_factory=dict)  # tables of the catalog's loads: section -> {key: value}
     points: dict = field(default_factory=dict)  # name -> cablefem.model.network.Point
     bodies: dict = field(default_factory=dict)  # name -> cablefem.model.network.Body
+    failures: tuple = ()  # cablefem.model.failure.Failure: line ends that let go during a run
 
     def where(self, key):
         """(file, key) naming where scene key ``key`` was written (``Scene.keys``)."""

@@ -9,6 +9,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from cablefem.fem import clamp
+from cablefem.runs.curvature import clamped_ends, node_curvature
 from cablefem.loads import State
 from cablefem.loads.rope import Rope
 
@@ -17,8 +19,9 @@ from cablefem.loads.rope import Rope
 class LineReport:
     """Per-line results [SI]: forces the line exerts on its ends (3,), their magnitudes,
     vertex positions (n, 3) anchor first, the touchdown arc length (None if no contact), the
-    tension at the vertices (n,) and, for a line in soil, ``soil``: the JSON fields of
-    ``embedment`` (padeye, mudline crossing, embedded length) and of its pretension path."""
+    tension at the vertices (n,), for a line in soil, ``soil``: the JSON fields of
+    ``embedment`` (padeye, mudline crossing, embedded length) and of its pretension path, and the
+    curvature [1/m] and bending moment [N m] at the vertices (n,) (``node_curvature``)."""
 
     name: str
     fairlead_force: np.ndarray
@@ -27,6 +30,8 @@ class LineReport:
     touchdown_s: float | None
     tension: np.ndarray | None = None
     soil: dict | None = None
+    curvature: np.ndarray | None = None
+    bending_moment: np.ndarray | None = None
 
     @property
     def fairlead_tension(self):
@@ -50,6 +55,8 @@ class LineReport:
             "touchdown_s": self.touchdown_s,
             **({} if self.tension is None else {"tension": self.tension.tolist()}),
             **(self.soil or {}),
+            **({} if self.curvature is None else {"curvature": self.curvature.tolist(),
+                                                  "bending_moment": self.bending_moment.tolist()}),
         }
 
 
@@ -107,9 +114,12 @@ def report(system, X, pretension=None):
             soil["pretension"] = {"installation": pretension.installation, "steps": pretension.steps,
                                   "halvings": pretension.halvings, "newton_iterations": pretension.iterations,
                                   "plastic_dissipation_J": float(np.sum(pretension.dissipation))}
+    curvature, moment = node_curvature(system, X)
+    clamped_ends(system, curvature, moment, clamp.reaction_moments(system, X))
     return LineReport(system.line.name, fairlead, anchor, X[: system.fem.n_vertices].copy(),
                       td if td is not None else touchdown(system, X),
-                      node_tension(system, X, np.linalg.norm(anchor), np.linalg.norm(fairlead)), soil)
+                      node_tension(system, X, np.linalg.norm(anchor), np.linalg.norm(fairlead)), soil,
+                      curvature, moment)
 
 
 def node_tension(system, X, anchor_tension, fairlead_tension):
@@ -120,12 +130,13 @@ def node_tension(system, X, anchor_tension, fairlead_tension):
 
 
 def tension_law(system, element):
-    """The line's tension law (its ``tension`` load: T = EA (e + beta de/dt), no compression) at
-    points of the elements ``element`` (n,): the load with its per-element values taken there."""
+    """The line's tension law (its ``tension`` load: T = EA (e + beta de/dt), no compression but where
+    a line type bends) at points of the elements ``element`` (n,): the load with its per-element
+    values taken there."""
     from copy import copy
 
     law = copy(system.tension)
-    for name in ("EA", "beta", "slack_damping"):  # per element (nel, 1): the points' elements
+    for name in ("EA", "beta", "slack_damping", "rod"):  # per element (nel, 1): the points' elements
         if getattr(law, name, None) is not None:
             setattr(law, name, getattr(law, name)[element])
     law.compression = False
@@ -219,6 +230,8 @@ class LineSampler:
         elements = np.concatenate([self.element, left[2], right[2]])
         self.law = tension_law(system, elements)
         self.rope = RopeSampler(system, elements, np.concatenate([self.s, at - inset, at + inset]))
+        self.seconds = fem.local_second_basis(self.s) if fem.hermite else None  # (n, nloc)
+        self.EI = system.props["EI"][self.element]
 
     def evaluate(self, X):
         """X (N, 3) at the sample points, (n, 3)."""
@@ -227,6 +240,15 @@ class LineSampler:
     def derivative(self, X):
         """dX/ds (N, 3) at the sample points, (n, 3)."""
         return np.einsum("nl,nlc->nc", self.gradients, X[self.dofs])
+
+    def curvature(self, X):
+        """Curvature [1/m] at the sample points (n,) from r'' of the element holding each (zero on
+        Lagrange elements)."""
+        from cablefem.loads.bending import curvature
+
+        if self.seconds is None:
+            return np.zeros(len(self.s))
+        return curvature(self.derivative(X).T, np.einsum("nl,nlc->nc", self.seconds, X[self.dofs]).T)
 
     def axial(self, X, V=None, ends=None):
         """Axial strain |r'| - 1 and tension [N] (n,) each at the sample points: inside an element
@@ -312,8 +334,9 @@ def line_fields(system, X, V=None, s=None, sampler=None, ends=None):
     contact = (stiffness * np.maximum(-proj.gap, 0.0))[:, None] * proj.direction
     velocity = np.zeros_like(points) if V is None else sampler.evaluate(V)
     strain, tension = sampler.axial(X, V, ends)
+    kappa = sampler.curvature(X)
     fields = {"points": points, "tension": tension, "strain": strain, "velocity": velocity, "seabed_gap": proj.gap,
-              "contact_force": contact}
+              "contact_force": contact, "curvature": kappa, "bending_moment": sampler.EI * kappa}
     fields.update(history_fields(system, element))
     return fields
 

@@ -28,6 +28,8 @@ from cablefem.io.output import (RowsFile, deferred_signals, failure as write_fai
 from cablefem.io.vtk import TimeSeriesWriter, polyline_mesh, series_files
 from cablefem.model.network import anchor_path, boundary_path
 from cablefem.runs.network_output import NetworkRows, body_reference, frame_marks
+from cablefem.runs.bending_rows import BendingRows
+from cablefem.runs.failures import Failures
 from cablefem.runs.results import LineSampler, line_fields
 from cablefem.runs.surface import NAME as SURFACE, SurfaceFrames
 from cablefem.statics.scene import run_start
@@ -79,7 +81,8 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
 
     check_names(scene)
     check_run(scene, duration, dt)
-    sea = scene.environment.waves
+    water = scene.environment.waves
+    sea = water if water is not None and water.count else None  # waves (a current alone has no surface)
     if sea is not None and scene.name == SURFACE:
         raise InputError(f"a scene in waves may not be named '{SURFACE}': its frames and the free surface's would "
                          f"both be {SURFACE}.pvd", key="name", file=scene.where("name")[0])
@@ -95,9 +98,12 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
     start = time.perf_counter()
     summary = {"scene": scene.name, "seabed": scene.seabed.describe(),
                "notes": list(scene.notes) + setting_warnings(scene, dt), "dt": dt, "duration": duration,
-               **({"waves": sea.describe()} if sea is not None else {})}
+               **({"waves": sea.describe()} if sea is not None else {}),
+               **({"current": water.current.describe()} if water is not None and water.current is not None else {})}
     integrators, outputs, status = [], {}, "completed"
-    tracker = _Extremes([line.name for line in scene.lines], NetworkRows(scene) if scene.points else None, sea)
+    failures = Failures(scene, dt)
+    tracker = _Extremes([line.name for line in scene.lines], NetworkRows(scene) if scene.points else None, sea,
+                        BendingRows(scene.lines))
     try:
         seabed_vtu = inside(out_dir, "seabed.vtu")
         try:
@@ -112,11 +118,13 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
                         for system, line, X0 in zip(systems, scene.lines, states)]
         groups = _groups(scene, integrators)
         outputs["frames"] = TimeSeriesWriter(out_dir, scene.name)
+        tracker.bending.attach(integrators)
         if sea is not None:
             outputs["surface"] = SurfaceFrames(sea, _bounds(scene), out_dir)
-        outputs["table"] = RowsFile(inside(out_dir, "tensions.csv"), _columns(scene, tracker.network, sea))
+        outputs["table"] = RowsFile(inside(out_dir, "tensions.csv"),
+                                    _columns(scene, tracker.network, sea, tracker.bending))
         outputs["bar"] = _progress(progress, duration)
-        _advance(scene, integrators, groups, outputs, tracker, duration, dt)
+        _advance(scene, integrators, groups, outputs, tracker, duration, dt, failures)
     except KeyboardInterrupt:
         status = "interrupted"
         raise
@@ -124,6 +132,8 @@ def run_scene(scene, out_dir=None, duration=None, dt=None, progress=None):
         status = f"stopped: {error}"
         raise
     finally:
+        if scene.failures:
+            summary["failures"] = failures.summary()
         _finish(summary, status, integrators, outputs, tracker, start, out_dir,
                 reraise=status == "completed")
     return summary
@@ -170,11 +180,13 @@ def step_times(t, stop, dt):
     return np.array(times)
 
 
-def _advance(scene, integrators, groups, outputs, tracker, duration, dt):
+def _advance(scene, integrators, groups, outputs, tracker, duration, dt, failures):
     """March every line to ``duration`` [s], writing a row of tensions.csv per step (a batch per
     output interval) and a VTK frame every ``output.every`` [s]. Ctrl-C and SIGTERM take effect
     between output intervals (``deferred_signals``; a compiled march does not see them sooner
-    anyway), so that the rows and frames always hold every step taken."""
+    anyway), so that the rows and frames always hold every step taken. The steps land on the
+    failures' times; with a failure's tension to watch, fixed steps stop after the first step over
+    it (``_march_to_tension``); where a failure is due a line end lets go (``cablefem.runs.failures``)."""
     solver, frames, table, bar = scene.solver, outputs["frames"], outputs["table"], outputs["bar"]
     surface = outputs.get("surface")
     samplers = [LineSampler(integ.system) for integ in integrators]  # the frames' points, once
@@ -198,16 +210,89 @@ def _advance(scene, integrators, groups, outputs, tracker, duration, dt):
             frame = int(np.floor((t + near) / every)) + 1
         return t
 
-    t = record([(integrators[0].t, _reactions(integrators, groups))])
+    def write(rows):
+        table.write(tracker.rows(failures.zero(rows)))
+
+    def release(row):
+        """Let go of the ends whose failures are due at ``row``; their lines' groups and samplers anew."""
+        before = list(integrators)
+        for k in failures.release_due(row, scene, integrators):
+            _regroup(groups, before[k], integrators[k])
+            samplers[k] = LineSampler(integrators[k].system)
+
+    tracker.bending.measure(integrators[0].t)
+    first = [(integrators[0].t, _reactions(integrators, groups))]
+    t = record(first)
+    if scene.failures:
+        release(first[-1])
     while t < duration - near:
         with deferred_signals():
-            stop = min(duration, frame * every)
+            stop = min(duration, frame * every, failures.next_time(t))
             # fixed steps to the next output time, or adaptive ones (``policy.advance``): each group in one call
             times = np.array([stop]) if solver.adaptive else step_times(t, stop, dt)
-            rows = _march(integrators, groups, times, lambda rows: table.write(tracker.rows(rows)))
+            if tracker.bending and times.size > 1:  # a bending line's end moments: its state after every step
+                rows = []
+                for each in times:
+                    rows += _march(integrators, groups, np.array([each]), write)
+                    tracker.bending.measure(rows[-1][0])
+                    if failures.due(rows[-1]):  # a line end lets go after this step
+                        break
+            elif failures.watching_tension and not solver.adaptive:
+                rows = _march_to_tension(integrators, groups, times, write, failures)
+            else:
+                rows = _march(integrators, groups, times, write)
+                tracker.bending.measure(rows[-1][0])
+            rows = failures.zero(rows)
             if bar is not None:
                 bar.update(rows[-1][0] - t)
             t = record(rows)
+            if scene.failures:
+                release(rows[-1])
+
+
+def _march_to_tension(integrators, groups, times, write, failures):
+    """``_march`` to ``times``, stopping after the first step at whose end a failure's tension is
+    exceeded: the steps are marched in one call; where a row before the last is over a threshold, the
+    groups go back to where they were (``Group.restore``) and march again one step at a time to that
+    row, so that an end lets go after the first step over its threshold (the steps taken twice are
+    counted twice). A march that fails is taken again step by step too: an end may let go before."""
+    saved = [group.snapshot() for group in groups]
+    try:
+        rows = _march(integrators, groups, times, lambda rows: None)
+        k = failures.first_due(rows)
+        if k is None or k == len(rows) - 1:
+            return rows
+    except ConvergenceError:  # the intact line failed where it might have let go before: step by step
+        k = len(times) - 1
+    for group, snapshot in zip(groups, saved):
+        group.restore(snapshot)
+        group.marched = None
+        for member in group.members:
+            member.contraction = -1.0  # the kept factors are of a later state
+    rows = []
+    try:
+        for tk in times[:k + 1]:
+            rows += _march(integrators, groups, [tk], write)
+            if failures.due(rows[-1]):
+                break
+    except ConvergenceError:
+        if rows:  # the steps taken before the one that failed
+            write(rows)
+        raise
+    return rows
+
+
+def _regroup(groups, old, new):
+    """The group that stepped integrator ``old`` made again with ``new`` in its place (a line end let
+    go: ``cablefem.runs.failures``), the accelerations of its other members kept (a junction's group
+    starts them at rest)."""
+    for g, group in enumerate(groups):
+        if any(m is old for m in group.members):
+            members = [new if m is old else m for m in group.members]
+            kept = [m.A.copy() for m in members]
+            groups[g] = Group(members, group.junctions)
+            for m, A in zip(members, kept):
+                m.A[...] = A
 
 
 def _finish(summary, status, integrators, outputs, tracker, start, out_dir, reraise):
@@ -234,6 +319,7 @@ def _finish(summary, status, integrators, outputs, tracker, start, out_dir, rera
             "steps": sum(s["steps"] for s in stats),
             "newton_iterations": sum(s["newton_iterations"] for s in stats),
             "integrator": stats, "tension_extremes": tracker.as_dict(),
+            **({"curvature_extremes": tracker.bending.extremes} if tracker.bending else {}),
             **({"network_extremes": tracker.network.extremes} if tracker.network is not None else {}),
             "adaptive": {"accepted": sum(s["steps"] for s in stats), "rejected": sum(s["rejected"] for s in stats)}
             if integrators and integrators[0].adaptive else None})
@@ -273,9 +359,10 @@ def _row(t, forces, tensions, extra=()):
     return [f"{x + 0.0:.10g}" for x in [*values, *extra]]  # + 0.0: no "-0"
 
 
-def _columns(scene, network=None, sea=None):
+def _columns(scene, network=None, sea=None, bending=None):
     names = ["fairlead_tension", "anchor_tension", "fx", "fy", "fz"]
-    extra = ([] if network is None else network.columns()) + ([] if sea is None else ["eta"])
+    extra = ([] if bending is None else bending.columns(len(scene.lines) > 1)) + \
+        ([] if network is None else network.columns()) + ([] if sea is None else ["eta"])
     if len(scene.lines) == 1:
         return ["t"] + names + extra
     return ["t"] + [f"{line.name}:{n}" for line in scene.lines for n in names] + extra
@@ -291,15 +378,17 @@ def _progress(progress, duration):
 
 
 class _Extremes:
-    """Largest and smallest fairlead and anchor tensions per line, with their times, and the
-    network's columns and extremes (``network``: a ``NetworkRows`` or None), and in waves (``sea``)
-    the elevation at the origin."""
+    """Largest and smallest fairlead and anchor tensions per line, with their times, the
+    network's columns and extremes (``network``: a ``NetworkRows`` or None), in waves (``sea``) the
+    elevation at the origin, and the bending lines' end moments and curvature extremes (``bending``:
+    a ``BendingRows``)."""
 
-    def __init__(self, names, network=None, sea=None):
+    def __init__(self, names, network=None, sea=None, bending=None):
         self.names = names
         self.table = {n: {} for n in names}
         self.network = network
         self.sea = sea
+        self.bending = bending
 
     def rows(self, rows):
         """The tensions.csv rows of ``rows`` (t, forces per line), the extremes updated."""
@@ -309,6 +398,8 @@ class _Extremes:
         self.update(times, tensions)
         extra = [[] for _ in rows] if self.network is None else \
             self.network.values(list(times), [forces for _, forces in rows])
+        if self.bending:  # a row a step: the moments at the state each step reached (``_advance``)
+            extra = [[*self.bending.values(), *values] for values in extra]
         if self.sea is not None:
             extra = [list(values) + [eta] for values, eta in zip(extra, self.sea.elevation(0.0, 0.0, times))]
         return [_row(t, forces, T, values) for (t, forces), T, values in zip(rows, tensions, extra)]

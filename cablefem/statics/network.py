@@ -207,7 +207,13 @@ class Network:
         tangent's response or a shift falling from the end's move to none at the free end)."""
         if free_end(self.lines[k]) is not None:
             (e, target), = targets.items()
-            return X + (target - X[self.systems[k].fem.end_dofs[e]])
+            fem = self.systems[k].fem
+            move = target - X[fem.end_dofs[e]]
+            if fem.hermite:  # the vertices move, the tangent rows stay
+                out = X.copy()
+                out[: fem.n_vertices] += move
+                return out
+            return X + move
         _, K, dofs, E, interior = self._tangent(k, X)
         moves = np.concatenate([targets[e] - X[dofs[e]] for e in dofs])
         out = X.copy()

@@ -32,6 +32,7 @@ import numpy as np
 import scipy.sparse.linalg as spla
 
 from cablefem.errors import ConvergenceError
+from cablefem.fem import clamp
 from cablefem.statics.start_shape import initial_shape
 
 
@@ -123,6 +124,53 @@ class LineSearch:
     def stalled(self, problem, step, lam, norm, norm_t):
         self.energy = self.next_energy
         return lam == 1.0 and norm_t > 0.5 * norm and problem.small(step)
+
+
+#: Newton on a line that bends: full steps taken without a line search while the residual stays
+#: above the lowest one seen for at most this many in a row, then back to that point and its line
+#: search (Chamberlain et al.'s watchdog, 1982). A bending line far stiffer axially than in bending
+#: (EA L^2 / EI ~ 1e8) needs its full steps: the first one from a straight start stretches it by
+#: (deflection / L)^2, a residual ~1e4 times its load, and Newton then converges in a few
+#: iterations, where the line search crawls along the inextensible shapes (verification/bending)
+WATCHDOG = 8
+
+
+class Watchdog(LineSearch):
+    """Full Newton steps while one of every ``WATCHDOG`` in a row lowers the lowest residual seen;
+    else back to the point that has it and one step of ``LineSearch`` from there (a line that
+    bends, ``WATCHDOG``). Small steps are line searched."""
+
+    def __init__(self, limit=WATCHDOG):
+        super().__init__()
+        self.limit, self.unimproved = limit, 0  # unimproved < 0: the full steps are over
+        self.best = self.restore = None  # (point, residual, tangent, norm)
+        self.tangent = None
+
+    def direction(self, problem, tangent, residual):
+        if self.unimproved >= self.limit:  # the full steps did not pay: back to the best point
+            self.restore, self.unimproved = self.best, -1
+            _, residual, tangent, _ = self.best
+        self.tangent = tangent
+        return problem.solve(tangent, residual)
+
+    def search(self, problem, point, residual, norm, step):
+        if self.best is None:
+            self.best = (point, residual, self.tangent, norm)
+        if self.restore is not None:
+            (point, residual, _, norm), self.restore, self.energy = self.restore, None, None
+        if self.unimproved < 0 or problem.small(step):  # a line search, then full steps again
+            self.unimproved = max(self.unimproved, 0)
+            found = super().search(problem, point, residual, norm, step)
+            if found is not None and found[3] < self.best[3]:
+                self.best = (found[0], found[1], found[2], found[3])
+            return found
+        trial = problem.trial(point, step, 1.0)
+        residual_t, tangent_t, norm_t = problem.evaluate(trial)
+        self.unimproved = self.unimproved + 1 if norm_t > (1.0 - 1e-4) * self.best[3] else 0
+        if not self.unimproved:
+            self.best = (trial, residual_t, tangent_t, norm_t)
+        self.energy = self.next_energy = None
+        return trial, residual_t, tangent_t, norm_t, 1.0
 
 
 class PseudoTransient:
@@ -235,9 +283,12 @@ def force_scale(system):
 
 
 def newton(system, X, tolerance=1e-8, max_iterations=50, scale=None):
-    """Newton with the line search (``LineSearch``) on the free rows of system's residual from X
-    (N, 3); returns (X, iterations, relative residual, history, converged)."""
-    return iterate(LineProblem(system, tolerance, scale), X.copy(), tolerance, max_iterations, LineSearch())
+    """Newton with the line search (``LineSearch``; under a ``Watchdog`` on a line that bends) on the
+    free rows of system's residual from X (N, 3), its clamped tangents turned onto their directions;
+    returns (X, iterations, relative residual, history, converged)."""
+    globalisation = Watchdog() if system.has("bending") else LineSearch()
+    return iterate(LineProblem(system, tolerance, scale), clamp.satisfy(system.clamps, X.copy()), tolerance,
+                   max_iterations, globalisation)
 
 
 def pseudo_transient(system, X, tolerance=1e-8, max_iterations=500):

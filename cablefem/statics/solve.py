@@ -47,7 +47,10 @@ def solve_static(system, X0=None, tolerance=1e-8, max_iterations=50):
                   ("axial continuation", lambda: axial_continuation(system, X, tolerance, max_iterations)),
                   ("settling", lambda: settle(system, X, tolerance, max_iterations)),
                   ("continuation", lambda: stiffness_continuation(system, X, tolerance, max_iterations))]
-    if hanging:  # the hang has the shape; what Newton misses is a stiff line's swing to where its end rests
+    # the hang has the shape; what Newton misses is a stiff line's swing to where its end rests. A line
+    # stiff axially against its bending: soft EA first too (a lazy wave from the catenary start: 182
+    # iterations, where pseudo-transient spent 500)
+    if hanging or system.has("bending"):
         strategies.insert(1, strategies.pop(2))
     total, history, best = 0, [], np.inf
     for name, strategy in strategies:

@@ -30,6 +30,7 @@ import math
 
 import numpy as np
 
+from cablefem.fem import clamp
 from cablefem.statics.catenary import elastic_catenary, inclined_catenary
 from cablefem.geometry import Plane
 from cablefem.statics.hang import free_hang
@@ -65,6 +66,7 @@ def initial_shape(system):
     for dof, end, held in zip(fem.end_dofs, (line.anchor, line.fairlead), line.prescribed):
         if held or hang is None:  # a free end that hangs stays where the hang puts it
             X[dof] = end
+    clamp.satisfy(system.clamps, X)
     return X, slack
 
 
@@ -133,7 +135,7 @@ def _floating(line, weight, lift, EA):
     mirror = np.array([1.0, 1.0, -1.0])
     shift = np.array([0.0, 0.0, 2.0 * level])
     mirrored = Line(line.name, shift + mirror * line.anchor, shift + mirror * line.fairlead, line.segments,
-                    line.order)
+                    line.order, element=line.element)
     surface = Plane((0.0, 0.0, level), (0.0, 0.0, 1.0))
     positions = slack_layout(mirrored, surface, lift, EA)
     slack = positions is not None

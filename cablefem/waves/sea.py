@@ -32,7 +32,10 @@ class Sea:
     direction [rad], phase [rad]; water ``depth`` [m] and ``gravity`` [m/s^2] of the dispersion;
     ``stretching`` (``STRETCHING``); ``ramp`` [s]; ``kind`` (what it was made from: "regular",
     "irregular", "components", "elevation", a MoorDyn WaveKin); ``state``: (name, value) pairs that
-    describe the sea state (summary.json); ``source``: where it was read."""
+    describe the sea state (summary.json); ``source``: where it was read; ``current``: a current that
+    varies in time and space (``cablefem.waves.grid.CurrentGrid``, MoorDyn-C's Currents 2 and 5), which
+    adds to the waves' velocity, or None. A sea of no components (``current_only``) is such a current
+    in still water."""
 
     amplitude: tuple
     omega: tuple
@@ -45,6 +48,7 @@ class Sea:
     kind: str = "components"
     state: tuple = field(default=())
     source: str = ""
+    current: object = None
 
     @classmethod
     def from_components(cls, amplitude, omega, direction, phase, depth, gravity=9.81, stretching="wheeler",
@@ -73,6 +77,12 @@ class Sea:
                              "need amplitudes well below the depth)", key=key)
         return cls(*(tuple(float(x) for x in a) for a in arrays), float(depth), float(gravity), stretching,
                    float(ramp), kind, tuple(state), source)
+
+    @classmethod
+    def current_only(cls, current, depth, gravity=9.81):
+        """Still water carrying ``current`` (a ``CurrentGrid``) over water ``depth`` [m] deep."""
+        return cls((), (), (), (), float(depth), float(gravity), "none", 0.0, current.kind, (), current.source,
+                   current)
 
     @classmethod
     def regular(cls, amplitude, period, direction=0.0, phase=0.0, depth=100.0, gravity=9.81, **options):
@@ -113,7 +123,13 @@ class Sea:
         """The water's motion at points (n, 3) [m] and time t [s] (``cablefem.waves.airy.Kinematics``)."""
         from cablefem.waves.airy import kinematics
 
-        return kinematics(self, points, t, gradients)
+        result = kinematics(self, points, t, gradients)
+        if self.current is not None:
+            U, G = self.current.at(points, t, gradients)
+            result.velocity = result.velocity + U
+            if gradients:
+                result.velocity_gradient = result.velocity_gradient + G
+        return result
 
     def spectrum_moments(self):
         """m0 [m^2] of the components (sum A^2 / 2) and the significant height 4 sqrt(m0) [m]."""
@@ -121,7 +137,7 @@ class Sea:
         return m0, float(4.0 * np.sqrt(m0))
 
     def describe(self):
-        """The sea state as a JSON-able dict (summary.json)."""
+        """The sea state as a JSON-able dict (summary.json; its waves, not its ``current``)."""
         m0, hs = self.spectrum_moments()
         omega = np.array(self.omega)
         return {"kind": self.kind, **dict(self.state), "components": self.count, "depth": self.depth,
