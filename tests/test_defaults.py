@@ -131,3 +131,21 @@ def test_oc4_adaptive_with_steps_up_to_02_s_runs_past_where_it_failed(tmp_path):
 
     assert summary["status"] == "completed"
     assert read_tensions(str(tmp_path / "out"))["t"][-1] == pytest.approx(80.0)
+
+
+def test_buoyant_and_bending_moordyn_lines_keep_the_files_mesh(tmp_path):
+    """tripod.txt: its float string (a buoyant segment) keeps P1 x NumSegs, where P2 elements fold at
+    zero tension (``defaults.keeps_numsegs``; its statics converge: tests/test_moordyn_files.py); its
+    legs, all heavier than water, get P2 x NumSegs / 2; with its EI, every line keeps NumSegs Hermite
+    elements. The note names each choice."""
+    from test_moordyn_files import data, without_ei
+
+    scene = load_scene(str(without_ei("tripod.txt", tmp_path)))
+    meshes = {line.name: (line.element, line.order, [s.elements for s in line.segments]) for line in scene.lines}
+    assert meshes["line2+1"] == ("lagrange", 1, [5, 3])
+    assert all(meshes[name] == ("lagrange", 2, [3, 7, 4]) for name in ("line5+4+3", "line8+7+6", "line11+10+9"))
+    (note,) = [note for note in scene.notes if note.startswith("mesh:")]
+    assert "line2+1: NumSegs 5+3 -> 5+3 P1, a buoyant segment" in note
+    bending = load_scene(data("tripod.txt"))
+    assert all(line.element == "hermite" for line in bending.lines)
+    assert {line.name: [s.elements for s in line.segments] for line in bending.lines}["line2+1"] == [5, 3]

@@ -323,7 +323,7 @@ def _build(path, text, simplify=True, waves=True, defaults=True):
         output = Output(every=options["dtout"])
         keys["output.every"] = (path, _at(options_rows["dtout"], "OPTIONS.dtOut"))
     if defaults:  # after _friction, which scales FricDamp with MoorDyn's segments
-        lines, mesh_note = by_physics.moordyn_mesh(lines)
+        lines, mesh_note = by_physics.moordyn_mesh(lines, environment.water_density)
         solver, step_note = by_physics.step(solver, (), Motion(), environment.waves)
         output, frame_note = by_physics.frames(output, {"every"} if "output.every" in keys else (), solver, Motion(),
                                                environment.waves)

@@ -217,7 +217,7 @@ def _moordyn_base(data, path):
     if "order" in values:
         lines = [line.with_order(values["order"]) for line in lines]
     elif "elements" not in values:  # neither: NumSegs read as an accuracy
-        lines, note = by_physics.moordyn_mesh(lines)
+        lines, note = by_physics.moordyn_mesh(lines, base.environment.water_density)
         base.notes.append(note)
     if "quadrature_points" in values:
         try:

@@ -4,7 +4,9 @@
 - **A MoorDyn line's mesh.** NumSegs states an accuracy, MoorDyn's lumped-mass error at NumSegs
   segments, not a mesh to copy: a line whose element count and order no key sets gets P2 elements,
   ``ceil(NumSegs / NUMSEGS_PER_P2)`` per MoorDyn line, the fewest that are at least as accurate
-  (verification/work_precision/numsegs.py derives the ratio).
+  (verification/work_precision/numsegs.py derives the ratio). A line on Hermite elements (EI > 0)
+  keeps NumSegs of them (the ratio was measured on Lagrange elements), a line with a buoyant
+  segment P1 x NumSegs (``keeps_numsegs``: a P2 element floating at zero tension folds).
 - **The step.** Fixed steps of a fortieth of the shortest period of what drives the scene (a motion's
   period or ramp, the strong wave components). Error control (``adaptive = true``, both integrators,
   lines and networks, local tension error ``Solver.error_tolerance``) is not the default: on OC4's
@@ -47,14 +49,27 @@ def moordyn_elements(numsegs):
     return max(1, math.ceil(numsegs / NUMSEGS_PER_P2))
 
 
-def moordyn_mesh(lines):
+def keeps_numsegs(line, water_density):
+    """Whether a MoorDyn line keeps its file's mesh (bool): on Hermite elements (EI > 0), NumSegs of
+    them, as numsegs.py measured Lagrange elements only; with a buoyant segment (mass below
+    ``water_density`` [kg/m^3] times its area), P1 x NumSegs, MoorDyn's own accuracy in statics. A
+    buoyant segment can float at zero tension, where a P2 element folds within itself at no energy
+    (a tension-only line's quadrature points compress freely: tripod.txt's float, EI zeroed, bends a
+    P2 element to -16 % strain at a point and its statics stall at 3e-8 against the 1e-8 tolerance
+    on every P2 mesh tried, where P1's straight elements converge)."""
+    return line.element == "hermite" or any(s.type.mass < water_density * s.type.area for s in line.segments)
+
+
+def moordyn_mesh(lines, water_density):
     """A MoorDyn file's lines (each segment's ``elements`` its NumSegs) on the default mesh: P2 with
-    ``moordyn_elements`` per segment. Returns (lines, note)."""
-    meshed = [replace(line, order=MOORDYN_ORDER,
+    ``moordyn_elements`` per segment, except the lines that ``keeps_numsegs``. Returns (lines, note)."""
+    meshed = [line if keeps_numsegs(line, water_density) else
+              replace(line, order=MOORDYN_ORDER,
                       segments=tuple(replace(s, elements=moordyn_elements(s.elements)) for s in line.segments))
               for line in lines]
     counts = ", ".join(f"{line.name}: NumSegs {'+'.join(str(s.elements) for s in line.segments)} -> "
                        f"{'+'.join(str(s.elements) for s in new.segments)}"
+                       + (" Hermite" if new.element == "hermite" else " P1, a buoyant segment" if new.order == 1 else "")
                        for line, new in zip(lines, meshed))
     note = (f"mesh: NumSegs read as an accuracy, MoorDyn's lumped-mass error at NumSegs segments; P2 elements, "
             f"NumSegs / {NUMSEGS_PER_P2} rounded up, reach it ({counts}); [moordyn] order or elements in a "
