@@ -68,12 +68,13 @@ References, cached in ``systems.json`` next to this script (``--reference`` reco
     python -m benchmarks.systems [--reference] [--repeats N] [--systems oc4-semi] [--json FILE]
 
 Last measured on the shared 2-core machine (load ~9), CPU s per simulated second, medians of 3
-rounds; errors in % RMS against the code's own reference and against the other's:
+rounds (the oc4-semi rows with ``--systems oc4-semi``); errors in % RMS against the code's own
+reference and against the other's:
 
     oc4-semi (100 s)                              run     steps   error  other  run ratio  steps ratio
-    MoorDyn-C, the file (20 segments, dtM 1e-3)   0.0167  0.0137   2.84   1.88   1.00       1.00
-    cablefem, defaults (P2 x 10, dt 0.25)         0.0053  0.0032   1.90   4.03   0.32       0.23
-    cablefem, best (P2 x 7, dt 0.4, tol 1e-4)     0.0043  0.0025   2.63   3.79   0.26       0.18
+    MoorDyn-C, the file (20 segments, dtM 1e-3)   0.0179  0.0149   2.84   1.88   1.00       1.00
+    cablefem, defaults (P2 x 10, dt 0.25)         0.0053  0.0031   1.90   4.03   0.29       0.21
+    cablefem, best (P2 x 7, dt 0.4, tol 1e-4)     0.0046  0.0026   2.63   3.79   0.26       0.17
 
     flume-snap (36 s)                             run     steps   error  other  run ratio  steps ratio
     MoorDyn-C, the file (20 segments, dtM 5e-3)   0.0021  0.0021  28.39  28.32   1.00       1.00
@@ -81,8 +82,8 @@ rounds; errors in % RMS against the code's own reference and against the other's
     cablefem, best (P1 x 14, dt 0.17, tol 1e-4)   0.0030  0.0010  18.90  19.10   1.39       0.47
 
 Issue 33's target for OC4 at the defaults (error no larger than MoorDyn-C's in <= 0.25x its
-in-process time) is not met: the error is (1.90 % against 2.84 %), the time is 0.32x (the steps
-alone 0.23x). What is left beyond the steps, 0.21 s of the 0.53 s run, is the statics, the set-up
+in-process time) is not met: the error is (1.90 % against 2.84 %), the time is 0.29x (the steps
+alone 0.21x). What is left beyond the steps, 0.22 s of the 0.53 s run, is the statics, the set-up
 and the 100 frames, each of which ends a compiled march (frames every 0.25 s took 2.2x the run of
 frames every 1 s). The best settings found, frames as at the defaults, take 0.26x. A fresh
 ``cablefem run examples/oc4_semi.toml`` took 1.93 and 2.12 s of CPU (user + system, two runs),
