@@ -187,7 +187,8 @@ def test_junction_groups_step_with_every_scheme_and_adaptive_steps(tmp_path, int
     path = tmp_path / "crowfoot.toml"
     name, _, adaptive = integrator.partition(" ")
     path.write_text(CROWFOOT.replace("dt = 0.05", f"dt = 0.05\nintegrator = \"{name}\"\n"
-                                     + ("adaptive = true\n" if adaptive else "")) + SURGE)
+                                     + ("adaptive = true\n" if adaptive else "")) + SURGE
+                    + "\n[output]\nevery = 0.1\n")  # frames as measured: adaptive steps land on each
     reference = tmp_path / "reference.toml"
     reference.write_text(CROWFOOT + SURGE)
     series = []

@@ -152,3 +152,29 @@ def test_a_run_replaces_an_earlier_run_of_its_scene_and_nothing_else(tmp_path):
     assert {file: (tmp_path / file).read_text() for file in others} == others
     assert (tmp_path / f"{name}_00099.vtu.d").is_dir()
     assert len(np.loadtxt(tmp_path / "tensions.csv", delimiter=",", skiprows=1)) == 31
+
+
+def test_a_frame_reads_back_as_meshio_writes_it(tmp_path):
+    """``write_vtu`` (raw appended arrays, one write) against meshio's own writer: the same points,
+    cells, point and cell data, read back by meshio, for lines with a network's points and bodies
+    and for the waves' surface of quads."""
+    import meshio
+
+    from cablefem.io.vtk import write_vtu
+    from cablefem.runs.surface import surface_mesh
+
+    rng = np.random.default_rng(3)
+    line = {"points": rng.random((9, 3)), "tension": rng.random(9), "velocity": rng.random((9, 3))}
+    meshes = [polyline_mesh([line, line], points=[(0, 3), (1, -1)], bodies=[(np.zeros(3), [(0, -1), (1, -1)])]),
+              surface_mesh(np.linspace(0, 1, 4), np.linspace(0, 2, 3), rng.random((3, 4)))]
+    for k, mesh in enumerate(meshes):
+        write_vtu(tmp_path / f"raw{k}.vtu", mesh)
+        meshio.write(tmp_path / f"meshio{k}.vtu", mesh)
+        ours, theirs = meshio.read(tmp_path / f"raw{k}.vtu"), meshio.read(tmp_path / f"meshio{k}.vtu")
+        assert np.array_equal(ours.points, theirs.points)
+        assert [(c.type, c.data.tolist()) for c in ours.cells] == [(c.type, c.data.tolist()) for c in theirs.cells]
+        assert ours.point_data.keys() == theirs.point_data.keys()
+        assert all(np.array_equal(ours.point_data[name], theirs.point_data[name]) for name in theirs.point_data)
+        assert ours.cell_data.keys() == theirs.cell_data.keys()
+        assert all(np.array_equal(a, b) for name in theirs.cell_data
+                   for a, b in zip(ours.cell_data[name], theirs.cell_data[name]))

@@ -11,6 +11,7 @@ from cablefem import InputError
 from cablefem.io.moordyn_input import damping_time
 from cablefem.model.builtin import default_scene
 from cablefem.io import load_scene
+from cablefem.io.moordyn_input import read_moordyn
 from cablefem.model.builtin import flume_scene
 
 EXAMPLES = os.path.join(os.path.dirname(__file__), "..", "examples")
@@ -96,7 +97,8 @@ def test_flat_flume_scene_is_table5_line_over_100m():
 
 
 def test_toml_and_moordyn_files_of_the_flume_give_identical_lines():
-    toml, moordyn = load_scene(example("flume_flat.toml")), load_scene(example("flume_flat.dat"))
+    # the MoorDyn file as it meshes its line (P1 x NumSegs), not as cablefem's defaults mesh it
+    toml, moordyn = load_scene(example("flume_flat.toml")), read_moordyn(example("flume_flat.dat"), defaults=False)
     assert_same_lines(toml.lines, moordyn.lines, slack_laws=(False, True))
     assert toml.environment == moordyn.environment
     assert moordyn.seabed.describe() == toml.seabed.describe()
@@ -146,7 +148,7 @@ with open(example("chain_polyester.dat")) as handle:
 
 
 def test_chain_and_polyester_merge_into_one_two_segment_line_anchor_first():
-    line = load_scene(example("chain_polyester.dat")).lines[0]
+    line = read_moordyn(example("chain_polyester.dat"), defaults=False).lines[0]  # NumSegs per segment
     assert line.name == "line1+2"
     assert [(s.type.name, s.length, s.elements) for s in line.segments] == [
         ("chain", 500.0, 20), ("polyester", 1000.0, 40)]
@@ -183,7 +185,7 @@ def test_moordyn_defaults_and_friction_mapping(tmp_path):
     text = CHAIN_POLY.replace("3.0e5     cBot", "3.0e5     cBot\n0.5   FrictionCoefficient\n1e6   FricDamp\n"
                               "1.5   StatDynFricScale\n25    dtIC")
     (tmp_path / "f.dat").write_text(text)
-    scene = load_scene(tmp_path / "f.dat")
+    scene = read_moordyn(str(tmp_path / "f.dat"), defaults=False)  # FricDamp scales with NumSegs
     friction, first = scene.friction, scene.lines[0].segments[0]
     # MoorDyn-C ramp mu FricDamp |v| reaches StatDynFricScale mu F_n (F_n: a resting node's weight)
     node_weight = first.type.submerged_weight(1025.0, 9.80665) * first.length / first.elements

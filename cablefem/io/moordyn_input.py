@@ -49,7 +49,8 @@ from cablefem.geometry import Horizontal, choose_seabed
 from cablefem.geometry.readers import is_number
 from cablefem.model.line import Line, LineType, Segment
 from cablefem.model.network import point_position, strings as network_strings
-from cablefem.model.scene import Contact, Environment, Friction, Scene, Solver
+from cablefem.model import defaults as by_physics
+from cablefem.model.scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
 from cablefem.io import validate as v
 from cablefem.io.axial_input import is_law, moordyn_law
 from cablefem.io.currents import GRID_FILES, MOORDYN_FILE, read_current_grid, read_current_profile
@@ -79,7 +80,7 @@ OPTION_CHECKS = {"wtrdpth": v.limited(v.positive, "length"),
                  "frictioncoefficient": v.limited(v.non_negative, "friction"),
                  "fricdamp": v.limited(v.positive, "friction_damping"),
                  "statdynfricscale": v.limited(v.positive, "friction"), "dtm": v.positive,
-                 "tmax": v.positive, "currents": v.number, "wavekin": v.number, "dtwave": v.positive}
+                 "tmax": v.positive, "dtout": v.non_negative, "currents": v.number, "wavekin": v.number, "dtwave": v.positive}
 _WHOLE = re.compile(r"-?[0-9]+")  # ASCII digits only: str.isdigit() takes '\u00b2', which int() refuses
 V1_LINES_NOTE = ("LINES (line {row}): MoorDyn v1 columns (UnstrLen NumSegs NodeAnch NodeFair), read as the header "
                  "names them: AttachA = NodeAnch, AttachB = NodeFair (MoorDyn-C 2.x reads LINES by position as v2 "
@@ -256,11 +257,13 @@ def damping_time(ba, ea, mass, length, segments):
     return -ba * (length / segments) * math.sqrt(ea * mass) / ea
 
 
-def read_moordyn(path, simplify=True, waves=True):
+def read_moordyn(path, simplify=True, waves=True, defaults=True):
     """The Scene of a MoorDyn v2 input file: lines anchor first, flat or gridded seabed, fixed fairleads.
 
     ``simplify``: replace a planar SeafloorFile grid by its plane (``choose_seabed``); ``waves``: read
-    WaveKin and its files (False: a TOML that wraps the file gives its own [waves]).
+    WaveKin and its files (False: a TOML that wraps the file gives its own [waves]); ``defaults``: the
+    mesh and step chosen by ``cablefem.model.defaults`` (False: each line's segments carry NumSegs
+    elements and the solver its plain defaults, for a TOML that wraps the file to choose).
     """
     path = os.path.abspath(path)
     try:
@@ -269,12 +272,12 @@ def read_moordyn(path, simplify=True, waves=True):
     except UnicodeDecodeError:
         raise InputError("not a MoorDyn input file (not text)", file=path) from None
     try:
-        return _build(path, text, simplify, waves)
+        return _build(path, text, simplify, waves, defaults)
     except InputError as error:
         raise error.within(file=path) from None
 
 
-def _build(path, text, simplify=True, waves=True):
+def _build(path, text, simplify=True, waves=True, defaults=True):
     """The Scene of MoorDyn file text (errors without the file name; read_moordyn adds it)."""
     notes = []
     found = parse_sections(split_sections(text))
@@ -321,6 +324,16 @@ def _build(path, text, simplify=True, waves=True):
     solver = Solver(duration=options["tmax"]) if "tmax" in options else Solver()
     if "tmax" in options:
         keys["solver.duration"] = (path, _at(options_rows["tmax"], "OPTIONS.TMax"))
+    output = Output()
+    if options.get("dtout", 0.0) > 0.0:  # 0, MoorDyn's default: every coupling step, which cablefem has not
+        output = Output(every=options["dtout"])
+        keys["output.every"] = (path, _at(options_rows["dtout"], "OPTIONS.dtOut"))
+    if defaults:  # after _friction, which scales FricDamp with MoorDyn's segments
+        lines, mesh_note = by_physics.moordyn_mesh(lines, environment.water_density)
+        solver, step_note = by_physics.step(solver, (), Motion(), environment.waves)
+        output, frame_note = by_physics.frames(output, {"every"} if "output.every" in keys else (), solver, Motion(),
+                                               environment.waves)
+        notes += [note for note in (mesh_note, step_note, frame_note) if note]
     if seabed_note is not None:  # a plane is used as given
         notes.append(seabed_note)
     if any(point.kind == "coupled" and point.body is None for point in scene_points.values()):
@@ -329,7 +342,7 @@ def _build(path, text, simplify=True, waves=True):
         notes.append(BODY_NO_MOTION_NOTE)
     return Scene(name=os.path.splitext(os.path.basename(path))[0], lines=lines, seabed=seabed,
                  contact=contact, environment=environment, friction=friction, solver=solver,
-                 source=path, notes=notes, moordyn_options=raw_options, keys=keys, points=scene_points,
+                 output=output, source=path, notes=notes, moordyn_options=raw_options, keys=keys, points=scene_points,
                  bodies=scene_bodies, failures=failures)
 
 

@@ -24,6 +24,7 @@ from cablefem.geometry import Horizontal, Plane, choose_seabed
 from cablefem.geometry.readers import MAX_COORDINATE
 from cablefem.model.line import ELEMENTS, Line, LineType, Segment
 from cablefem.dynamics.registry import INTEGRATORS
+from cablefem.model import defaults as by_physics
 from cablefem.model.scene import Contact, Environment, Friction, Motion, Output, Scene, Solver
 from cablefem.io import axial_input, validate as v
 from cablefem.io.currents import current_profile_setting
@@ -153,8 +154,14 @@ def read_toml_scene(path, data=None):
     friction = replace(base.friction if base else Friction(),
                        **_section(data, "friction", FRICTION_KEYS))
     motion = _motion(data["motion"], folder) if "motion" in data else Motion()
-    solver = replace(base.solver if base else Solver(), **_section(data, "solver", SOLVER_KEYS))
-    output = replace(Output(), **_section(data, "output", OUTPUT_KEYS))
+    solver_keys = _section(data, "solver", SOLVER_KEYS)
+    solver, step_note = by_physics.step(replace(base.solver if base else Solver(), **solver_keys), solver_keys,
+                                        motion, environment.waves)
+    output_keys = _section(data, "output", OUTPUT_KEYS)
+    given = set(output_keys) | ({"every"} if base is not None and "output.every" in base.keys else set())
+    output, frame_note = by_physics.frames(replace(base.output if base else Output(), **output_keys), given, solver,
+                                           motion, environment.waves)
+    notes += [note for note in (step_note, frame_note) if note]
     if seabed_note is not None:  # a plane is used as given
         notes.append(seabed_note)
     load_settings = {spec.section: v.pick(v.table(data[spec.section], spec.section), spec.section, spec.keys,
@@ -201,7 +208,7 @@ def _moordyn_base(data, path):
     values = v.pick(v.table(data["moordyn"], "moordyn"), "moordyn", MOORDYN_KEYS, required=("file",))
     file = v.existing_file(values["file"], "moordyn.file", folder)
     # the TOML's [seabed] simplify decides; its [waves] replace the file's WaveKin and its files
-    base = read_moordyn(file, simplify=False, waves="waves" not in data)
+    base = read_moordyn(file, simplify=False, waves="waves" not in data, defaults=False)
     lines = base.lines
     if "elements" in values:
         lines = [line.with_elements(values["elements"]) for line in lines]
@@ -209,6 +216,9 @@ def _moordyn_base(data, path):
                           for i, line in enumerate(lines) for j in range(len(line.segments))})
     if "order" in values:
         lines = [line.with_order(values["order"]) for line in lines]
+    elif "elements" not in values:  # neither: NumSegs read as an accuracy
+        lines, note = by_physics.moordyn_mesh(lines, base.environment.water_density)
+        base.notes.append(note)
     if "quadrature_points" in values:
         try:
             lines = [line.with_quadrature_points(values["quadrature_points"]) for line in lines]

@@ -1,13 +1,17 @@
-"""VTK time series through meshio: one .vtu per frame and a .pvd collection (docs/outputs.md).
+"""VTK time series: one .vtu per frame and a .pvd collection (docs/outputs.md).
 
-meshio writes each frame under a temporary name, renamed into place when it is
+Each frame is written under a temporary name, renamed into place when it is
 complete (``output.replace_into``); the .pvd is a few lines of XML written
 here and rewritten (atomically, ``output.write_atomic``) after every frame. A
 run stopped at any moment, even killed outright, leaves a collection that
 ParaView and pyvista open, listing every complete frame, and no partial
-.vtu file.
+.vtu file. A frame is a meshio mesh written by ``write_vtu``: the XML of
+VTK's UnstructuredGrid with its arrays inline in base64, uncompressed, in one
+write (raw appended binary would be cheaper still, but meshio takes a raw
+file that happens to parse as XML for base64 and misreads it).
 """
 
+import base64
 import os
 import re
 import time
@@ -18,7 +22,7 @@ import numpy as np
 
 from cablefem.io.output import GrowingFile, inside, replace_into, tidy, write_atomic
 
-__all__ = ["TimeSeriesWriter", "polyline_mesh", "read_collection", "series_files", "write_atomic"]
+__all__ = ["TimeSeriesWriter", "polyline_mesh", "read_collection", "series_files", "write_atomic", "write_vtu"]
 
 
 def polyline_mesh(lines, points=(), bodies=()):
@@ -70,6 +74,45 @@ def polyline_mesh(lines, points=(), bodies=()):
     return meshio.Mesh(np.concatenate(coordinates), blocks, point_data=point_data, cell_data=cell_data)
 
 
+#: VTK's cell type numbers and XML type names of what ``polyline_mesh`` and the waves' surface write
+_VTK_CELL = {"vertex": 1, "line": 3, "triangle": 5, "quad": 9}
+_VTK_TYPE = {np.dtype("float64"): "Float64", np.dtype("int64"): "Int64", np.dtype("uint8"): "UInt8"}
+
+
+def write_vtu(path, mesh):
+    """Write a meshio mesh of vertex, line, triangle and quad cells (``polyline_mesh``, the waves'
+    surface) to the .vtu file ``path``: VTK XML UnstructuredGrid, each array inline base64 of its
+    UInt64 byte count and its little-endian values, uncompressed (meshio's layout without zlib)."""
+
+    def array(name, values, components=None):
+        values = np.ascontiguousarray(values)
+        if values.dtype not in _VTK_TYPE:
+            values = values.astype(np.int64 if values.dtype.kind in "iub" else np.float64)
+        data = values.astype(values.dtype.newbyteorder("<"), copy=False).tobytes()
+        components = components or (values.shape[1] if values.ndim > 1 else None)
+        return (f'<DataArray type="{_VTK_TYPE[values.dtype]}"{f" Name={quoteattr(name)}" if name else ""}'
+                f'{f" NumberOfComponents={chr(34)}{components}{chr(34)}" if components else ""} format="binary">'
+                + base64.b64encode(np.uint64(len(data)).tobytes() + data).decode("ascii") + "</DataArray>")
+
+    cells = mesh.cells
+    connectivity = np.concatenate([block.data.ravel() for block in cells]).astype(np.int64)
+    sizes = np.concatenate([np.full(len(block.data), block.data.shape[1]) for block in cells])
+    types = np.concatenate([np.full(len(block.data), _VTK_CELL[block.type], dtype=np.uint8) for block in cells])
+    parts = ['<?xml version="1.0"?>', '<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" '
+             'header_type="UInt64">', "<UnstructuredGrid>",
+             f'<Piece NumberOfPoints="{len(mesh.points)}" NumberOfCells="{len(types)}">',
+             "<Points>", array(None, np.asarray(mesh.points, dtype=np.float64), 3), "</Points>",
+             "<Cells>", array("connectivity", connectivity), array("offsets", np.cumsum(sizes).astype(np.int64)),
+             array("types", types), "</Cells>", "<PointData>"]
+    parts += [array(name, np.asarray(values, dtype=np.float64)) for name, values in mesh.point_data.items()]
+    parts.append("</PointData>")
+    parts.append("<CellData>")
+    parts += [array(name, np.concatenate([np.asarray(v) for v in values])) for name, values in mesh.cell_data.items()]
+    parts += ["</CellData>", "</Piece>", "</UnstructuredGrid>", "</VTKFile>", ""]
+    with open(path, "wb") as handle:
+        handle.write("\n".join(parts).encode("ascii"))
+
+
 class TimeSeriesWriter:
     """Frames ``<name>_<k>.vtu`` and the collection ``<name>.pvd`` in ``folder``.
 
@@ -102,7 +145,7 @@ class TimeSeriesWriter:
     def write(self, t, mesh):
         """Write one frame at time t [s], then the collection listing it."""
         file_name = f"{self.name}_{len(self.frames):05d}.vtu"
-        replace_into(lambda tmp: meshio.write(tmp, mesh, file_format="vtu"), inside(self.folder, file_name))
+        replace_into(lambda tmp: write_vtu(tmp, mesh), inside(self.folder, file_name))
         self.frames.append((float(t), file_name))
         self._rows += (f'    <DataSet timestep="{tidy(float(t))!r}" group="" part="0" '
                        f'file={quoteattr(file_name)}/>\n').encode("utf-8")

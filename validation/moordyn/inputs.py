@@ -225,7 +225,8 @@ def write_inputs(folder):
     for case, motion in case_motions().items():
         path = folder / f"{case}.toml"
         path.write_text(f"# {case}: the MoorDyn file as is, with the fairlead motion MoorDyn's file has no "
-                        f"place for\nname = \"{case}\"\n\n[moordyn]\nfile = \"{case_file(case)}\"\n\n"
+                        f"place for\nname = \"{case}\"\n\n[moordyn]\nfile = \"{case_file(case)}\"\n"
+                        "order = 1  # the file's mesh, P1 x NumSegs: the study compares MoorDyn-C at NumSegs\n\n"
                         + _motion_toml(motion))
         tomls[case] = path
     return tomls

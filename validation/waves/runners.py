@@ -10,7 +10,6 @@ import numpy as np
 
 from cablefem.dynamics.registry import INTEGRATORS
 from cablefem.fem.system import build_system
-from cablefem.io import load_scene
 from cablefem.model.network import boundary_path
 from cablefem.statics.scene import start_states
 from validation.moordyn import peer
@@ -32,9 +31,13 @@ def run_moordyn(path, duration, segments_factor=1, dtM=2.5e-4):
 
 
 def scene_of(path, elements_factor=1, dt=0.01):
-    """The case's file read as a cablefem scene, its elements times ``elements_factor``, generalised-alpha
+    """The case's MoorDyn file read as a cablefem scene on its own mesh (P1 x NumSegs), its elements times ``elements_factor``, generalised-alpha
     steps of dt [s]."""
-    scene = load_scene(str(path))
+    from cablefem.io.checks import check_scene
+    from cablefem.io.moordyn_input import read_moordyn
+
+    # the file's mesh (MoorDyn's NumSegs as P1 elements), not the P2 one cablefem's defaults give it
+    scene = check_scene(read_moordyn(str(path), defaults=False))
     if elements_factor != 1:
         scene = replace(scene, lines=[line.with_elements(sum(s.elements for s in line.segments) * elements_factor)
                                       if len(line.segments) == 1 else _refined(line, elements_factor)
