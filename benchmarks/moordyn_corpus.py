@@ -35,10 +35,18 @@ Measured on MoorDyn v2.7.1's tests/Mooring (the moordyn 2.7 wheel; 2 shared core
 
   | file | difference | why |
   |---|---|---|
-  | BeamSimplySupported.txt | 22 % | a beam carries little axial tension: its end tensions are small against its bending (MoorDyn's own beam test accepts 50 % error in deflection) |
+  | BeamSimplySupported.txt | 22 % | two quantities: MoorDyn-C's node tension is its end segment's axial tension (6332 N), cablefem's end tension the end force's magnitude, the beam's shear included (7743 N = |(5993, 4903)| N). The axial tension inside the line is 6010 N in cablefem, 6330 N in MoorDyn-C at its 19 segments; a pinned beam under its weight whose ends cannot move apart carries H = 6012.9 N (EI w'''' - H w'' = w with H = EA / 2L int w'^2 dx, solved to 1e-6) |
   | body_tests/bodyDrag.txt | 232 % | a free body: cablefem's static equilibrium against MoorDyn-C's dynamic relaxation, not yet explained |
-  | syrope/exp_wc, quadratic_wc | 89 %, 35 % | SYROPE's working curves: linear_wc agrees (0.00 %), so the nonlinear curves' initial state differs, not yet explained |
+  | syrope/exp_wc, quadratic_wc | 89 %, 35 % | MoorDyn-C drops owc.dat's (0, 0) row and starts its working curves at the next row (below) |
   | wavekin_2.txt, wavekin_3.txt, wavekin_7.txt | 2.8 %, 2.8 %, 2.6 % | TmaxIC 0: MoorDyn-C starts from its initial shape without relaxing it (the _curr2 files, with TmaxIC 200 and the fairlead 2 m higher, agree to 0.41 %) |
+
+  SYROPE: MoorDyn-C skips the first three lines of a curve file and owc.dat has two header lines,
+  so MoorDyn-C drops its (0, 0) row and starts its working curves at the first row it reads (eps_0 =
+  2.07e-3 in ``Line::setWorkingCurve``), where cablefem starts them at (0, 0)
+  (verification/axial_laws, "MoorDyn-C and owc.dat"). MoorDyn-C's numbers follow from that by hand
+  to five digits: after Init 1.5378e5 N (exp_wc) and 3.2240e5 N (quadratic_wc); held at rest for
+  4500 s it settles at 3.1241e5 N and 3.6727e5 N, its working curve's tension at the file's strain.
+  The linear working curve with k1 >= 1 does not use eps_0: 0.00 %.
 """
 
 import argparse

@@ -9,7 +9,7 @@ import numpy as np
 
 from cablefem.dynamics.registry import INTEGRATORS
 from cablefem.errors import ConvergenceError
-from cablefem.model.line import Line, Segment
+from cablefem.model.line import Line
 from cablefem.loads.added_mass import AddedMass
 from cablefem.loads.drag import Drag
 from cablefem.model.motion import fairlead_motion
@@ -86,9 +86,9 @@ def run_moordyn_case(path, scene, duration, settings, options=None, initial_stat
 
 
 def refined(scene, factor):
-    """The scene with every segment's element count times ``factor``."""
-    lines = [Line(line.name, line.anchor, line.fairlead,
-                  [Segment(seg.type, seg.length, int(seg.elements * factor)) for seg in line.segments], line.order)
+    """The scene with every segment's element count times ``factor`` (all else of each line and
+    segment kept: a SYROPE segment's initial condition, ends, joints)."""
+    lines = [replace(line, segments=[replace(seg, elements=int(seg.elements * factor)) for seg in line.segments])
              for line in scene.lines]
     return replace(scene, lines=lines)
 
@@ -150,6 +150,7 @@ def _cablefem_steps(scene, states, duration, dt, hydro_per_unstretched, lumped):
     integrators = []
     for line, X0 in zip(scene.lines, states):
         system = build_system(scene, line)
+        system.reset_history(X0)  # a load's history from its start (a SYROPE rope's initial condition)
         if hydro_per_unstretched:
             system.loads = [PerUnstretchedLength(load) if isinstance(load, (Drag, AddedMass)) else load
                             for load in system.loads]
