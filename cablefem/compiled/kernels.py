@@ -39,6 +39,7 @@ from numba import uint64 as _index
 from numba.core.errors import NumbaExperimentalFeatureWarning
 from numba.extending import overload
 
+from cablefem.compiled import progress  # noqa: F401 (a compilation says so on stderr, once)
 from cablefem.compiled.hermite import CLAMP_SCALE, _add_second, _clamp, _second_kinematics
 from cablefem.loads import catalog
 from cablefem.waves.compiled import NONE as NO_WATER, water_cached
