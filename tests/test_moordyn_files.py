@@ -6,6 +6,7 @@ Currents option and [environment] current_profile, body motions given by a TOML 
 
 import json
 import os
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -13,7 +14,7 @@ import pytest
 from cablefem.cli import main
 from cablefem.errors import InputError
 from cablefem.io import load_scene
-from cablefem.model.network import coupling
+from cablefem.model.network import check_steppable, coupling
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "moordyn")
 
@@ -203,10 +204,11 @@ def test_a_free_body_reads_solves_in_statics_and_runs(tmp_path, capsys):
 
 def test_zero_length_rods_of_a_moordyn_file_are_massless_points_joining_their_lines():
     """complex_system.txt's four free rods have NumSegs 0: MoorDyn-C gives a zero-length rod no mass
-    and no volume, so each is a massless free point, and the lines through them are strings (the
-    rods' ends R1A and R1B are the one point ``rod1``)."""
+    and no volume, so each is a massless free point (the rods' ends R1A and R1B are the one point
+    ``rod1``); its lines bend (EI > 0), so each such point is a hinge and every line a string of its own."""
     scene = load_scene(data("complex_system.txt"))
-    assert [line.name for line in scene.lines] == ["line1", "line2+3", "line4+5+6+7"]
+    assert [line.name for line in scene.lines] == [f"line{k}" for k in range(1, 8)]
+    assert {"rod1", "rod2", "rod3", "rod4"} <= set(coupling(scene.lines, scene.points, scene.bodies)[0])
     rods = {name: point for name, point in scene.points.items() if name.startswith("rod")}
     assert sorted(rods) == ["rod1", "rod2", "rod3", "rod4"]
     assert all(p.kind == "free" and p.mass == 0.0 and p.volume == 0.0 and p.body is None for p in rods.values())
