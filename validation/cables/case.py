@@ -103,8 +103,14 @@ def cablefem_scene(elements, folder, options=None, moving=True):
     path = Path(folder) / f"lazy_wave_points_{'_'.join(map(str, elements))}.dat"
     path.write_text(moordyn_text(elements, 1e-4, options, rods=False))
     scene = load_scene(path)
-    line, = scene.lines
-    line = replace(line, tangents=(None, np.array([0.0, 0.0, 1.0])))
+    # the file's free points are hinges for cablefem (each line a string); MoorDyn's zero-length free Rods
+    # pass the moment, so the cable is welded here: one line of the three sections, C1 through them
+    first, *_, last = scene.lines
+    line = replace(first, name="+".join(line.name for line in scene.lines), fairlead=last.fairlead,
+                   segments=tuple(s for each in scene.lines for s in each.segments), ends=(first.ends[0], last.ends[1]),
+                   prescribed=(first.prescribed[0], last.prescribed[1]), tangents=(None, np.array([0.0, 0.0, 1.0])))
+    points = {name: point for name, point in scene.points.items() if name in line.ends}
+    scene = replace(scene, points=points)
     if not moving:
         return replace(scene, lines=[line])
     motion = Motion(kind="harmonic", amplitude=MOTION["amplitude"], period=MOTION["period"], ramp=MOTION["ramp"])
