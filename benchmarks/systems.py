@@ -113,9 +113,9 @@ cost about that.
 """
 
 import argparse
-import math
 import contextlib
 import json
+import math
 import sys
 import tempfile
 import time
@@ -277,6 +277,7 @@ def _moordyn_bodies(system, scene, segments, dtM, ic_dtM, duration):
     bodies (validation/networks: the file written from the network's one description at ``segments``
     x its NumSegs), in the order of cablefem's strings, end-node inertia subtracted."""
     from cablefem.model.network import dynamic_lines
+    from validation.moordyn import peer
     from validation.networks import systems as networks
     from validation.networks.dynamics import run_moordyn as run_bodies
     from validation.networks.dynamics import without_end_inertia
@@ -284,10 +285,11 @@ def _moordyn_bodies(system, scene, segments, dtM, ic_dtM, duration):
 
     net = getattr(networks, SYSTEMS[system]["network"])(segments)
     watch = watch_list(net)
+    text = networks.moordyn_text(net, **({"dtM": dtM} if dtM else {}))
+    dtM = float(peer.option_value(text, "dtM"))  # the file's where none is given
     with tempfile.TemporaryDirectory(prefix="cablefem-systems-") as folder:
         path = Path(folder) / f"{system}.dat"
-        path.write_text(networks.moordyn_text(net, dtM=dtM or 5e-4))
-        dtM = dtM or 5e-4
+        path.write_text(text)
         md = run_bodies(path, scene, duration, COUPLING_DT, dtM, ic_dtM or dtM, watch)
     forces = without_end_inertia(md, scene, watch["fairlead_names"])["fairleads"]
     order = [watch["fairlead_names"].index(line.ends[1]) for line in dynamic_lines(scene)]

@@ -39,6 +39,7 @@ if __package__ in (None, ""):  # python validation/moordyn_parity/run.py
     sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
 from cablefem.io import load_scene  # noqa: E402
+from validation.moordyn import peer  # noqa: E402
 from validation.moordyn.comparison import differences, on_grid  # noqa: E402
 from validation.moordyn.runners import point_order, refined, run_cablefem_case, run_moordyn_case  # noqa: E402
 
@@ -97,7 +98,7 @@ def moordyn_run(case, scene, factor):
     source = INPUTS / spec["file"]
     duration = spec["period"] * spec["periods"]
     text = source.read_text()
-    dtM = float(re.search(r"^\s*([-+0-9.eE]+)\s+dtM", text, re.M).group(1))
+    dtM = float(peer.option_value(text, "dtM"))
     fine = spec["refined_dtM"]
     settings = {"segments": factor, "dtM": dtM if factor == 1 else fine,
                 "ic_dtM": spec["ic_dtM"] if factor == 1 else min(fine, spec["ic_dtM"])}
