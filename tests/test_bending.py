@@ -458,7 +458,7 @@ def test_a_bending_line_with_its_own_axial_law_pulls_and_pushes_as_with_its_ea(a
     assert np.abs(slack - R1).max() > 0.1 * np.abs(R1).max()  # the push is no round-off
 
 
-def test_a_bending_line_in_a_junction_network_runs_compiled_as_in_python():
+def test_a_bending_line_in_a_junction_network_runs_compiled_as_in_python(tmp_path):
     # benchmarks/crowfoot.toml with its upper line a cable of EI = 1e4 N m^2 on Hermite elements: the
     # junction's compiled steps take the Hermite string with the chain legs (one numba type)
     from cablefem.dynamics.group import junction_groups
@@ -472,26 +472,23 @@ def test_a_bending_line_in_a_junction_network_runs_compiled_as_in_python():
         'Cd_normal = 1.2\nCa_normal = 1.0\nEI = 1.0e4\n[bodies.platform]').replace(
         'segments = [{ type = "chain", length = 185.0, elements = 20 }]',
         'segments = [{ type = "cable", length = 185.0, elements = 20 }]\nelement = "hermite"')
-    path = ROOT / "tests" / "_crowfoot_bending.toml"
+    path = tmp_path / "crowfoot_bending.toml"
+    path.write_text(text)
     finals = []
-    try:
-        path.write_text(text)
-        for compiled in (True, False):
-            scene = load_scene(path)
-            assert any(line.hermite for line in scene.lines)
-            systems = [build_system(scene, line) for line in dynamic_lines(scene)]
-            states, _ = start_states(scene, systems=systems)
-            options = {**integrator_options(scene.solver), "compiled": compiled}
-            integrators = [INTEGRATORS[scene.solver.integrator](system, X0, boundary_path(scene, line), dt=0.05,
-                                                                anchor=anchor_path(scene, line), **options)
-                           for system, line, X0 in zip(systems, scene.lines, states)]
-            steps = junction_groups(scene, integrators)[0]
-            with warnings.catch_warnings(record=True) as caught:
-                warnings.simplefilter("always")
-                steps.march(0.05 * np.arange(1, 21))
-            assert not any("differ in type" in str(w.message) for w in caught)
-            finals.append([integ.X.copy() for integ in integrators])
-    finally:
-        path.unlink(missing_ok=True)
+    for compiled in (True, False):
+        scene = load_scene(path)
+        assert any(line.hermite for line in scene.lines)
+        systems = [build_system(scene, line) for line in dynamic_lines(scene)]
+        states, _ = start_states(scene, systems=systems)
+        options = {**integrator_options(scene.solver), "compiled": compiled}
+        integrators = [INTEGRATORS[scene.solver.integrator](system, X0, boundary_path(scene, line), dt=0.05,
+                                                            anchor=anchor_path(scene, line), **options)
+                       for system, line, X0 in zip(systems, scene.lines, states)]
+        steps = junction_groups(scene, integrators)[0]
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            steps.march(0.05 * np.arange(1, 21))
+        assert not any("differ in type" in str(w.message) for w in caught)
+        finals.append([integ.X.copy() for integ in integrators])
     for compiled, python in zip(*finals):
         np.testing.assert_allclose(compiled, python, rtol=0, atol=1e-8 * np.abs(python).max())

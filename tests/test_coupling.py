@@ -145,11 +145,11 @@ def test_the_balance_jacobian_equals_finite_differences(tmp_path, junction):
     assert np.abs(J - numeric).max() <= 1e-5 * np.abs(J).max()
 
 
-def test_cablefem_static_reports_the_free_body_in_balance_and_run_refuses_it(tmp_path, capsys):
+def test_cablefem_static_reports_the_free_body_in_balance(tmp_path):
     """``cablefem static --json``: the strings' force and moment on the body, with its weight at the
     centre of gravity, buoyancy at cb, the waterplane's heave force and the external load, sum to
-    zero (the body's equilibrium, computed from the reported pose and end forces); ``cablefem run``
-    refuses the free body with one line and status 2."""
+    zero (the body's equilibrium, computed from the reported pose and end forces). Free bodies in a
+    run: tests/test_body_dynamics.py."""
     import json
 
     from cablefem.cli import main
@@ -165,7 +165,3 @@ def test_cablefem_static_reports_the_free_body_in_balance_and_run_refuses_it(tmp
     moment = (np.array(body["moment"]) + np.cross(R @ BODY["cg"], weight) + np.cross(R @ BODY["cb"], buoyancy)
               + BODY["moment"])
     assert np.abs(force).max() <= 1e-6 * BODY["mass"] * G and np.abs(moment).max() <= 1e-6 * BODY["moment"][2]
-    capsys.readouterr()
-    assert main(["run", str(tmp_path / "network.toml"), "--out", str(tmp_path / "run")]) == 2
-    error = capsys.readouterr().err.strip().splitlines()
-    assert len(error) == 1 and "body 'platform' (free)" in error[0] and "cablefem static" in error[0]

@@ -226,3 +226,21 @@ def test_the_tripod_on_its_hinges_holds_still_with_either_integrator():
         steps.march(0.01 * np.arange(1, 11))
         for integ, X0 in zip(integrators, states):
             assert np.abs(integ.X - X0).max() < 1e-6
+
+
+def test_one_compilation_steps_networks_of_any_number_of_strings(tmp_path):
+    """The group's compiled steps take its strings in numba's typed List, whose type leaves out their
+    number: the crowfoot's three strings and the same crowfoot with a fourth leg step on one compiled
+    function (a tuple of strings compiled the steps again for each number, minutes each)."""
+    fourth = CROWFOOT.replace('[[lines]]\nname = "upper"', '[points.a3]\nkind = "fixed"\n'
+                              'position = [-450.0, 0.0, -180.0]\n[[lines]]\nname = "upper"') + (
+        '[[lines]]\nname = "leg3"\nanchor = "a3"\nfairlead = "j"\n'
+        'segments = [{ type = "chain", length = 300.0, elements = 9 }]\n')
+    functions = set()
+    for text in (CROWFOOT + SURGE, fourth + SURGE):
+        _, integrators, group, _ = start(tmp_path, text)
+        group.march(0.05 * np.arange(1, 5))
+        assert len(group.members) == text.count("[[lines]]") and group.members[0].t == pytest.approx(0.2)
+        functions.add(group.packer.functions["steps"])
+    steps, = functions
+    assert len(steps.signatures) == 1

@@ -6,7 +6,7 @@ import numpy as np
 
 from cablefem.compiled import kernels
 from cablefem.compiled.seabed import GRID, PLANE, TRIANGULATED, Projector
-from cablefem.compiled.steps import FRACTIONS, Group, Problem, bound
+from cablefem.compiled.steps import FRACTIONS, Group, Problem, bound, strings_list
 
 #: adaptive steps in the compiled loop end on this many even splits of an output interval (smaller
 #: ones go on in Python, where the ends are placed anywhere)
@@ -172,17 +172,17 @@ class Packer:
     def pack(self, ends):
         """What the compiled policy steps: a line's ``Problem``, or the ``Group`` of the strings'
         current states; each string's ends (``ends``)."""
-        problems = tuple(string.problem(self.settings, *each) for string, each in zip(self.strings, ends))
+        self.problems = [string.problem(self.settings, *each) for string, each in zip(self.strings, ends)]
         if self.kind == "line":
-            return problems[0]
-        return Group(self.settings, problems, self.junctions, *self.scratch)
+            return self.problems[0]
+        return Group(self.settings, strings_list(self.problems), self.junctions, *self.scratch)
 
     def finish(self, prob):
-        for string, each in zip(self.strings, (prob,) if self.kind == "line" else prob.strings):
+        for string, each in zip(self.strings, self.problems):
             string.finish(each)
 
     def _first(self, prob):
-        return prob if self.kind == "line" else prob.strings[0]
+        return self.problems[0]
 
     def run(self, times, forces):
         """Steps of the strings to ``times`` (m,) as ``policy.steps`` takes them, their forces into
@@ -201,7 +201,7 @@ class Packer:
         t1 = t + h
         prob = self.pack([(string.integ.ends_at(t1)[None], np.zeros((0, self.parts - 1, 2, 3)))
                           for string in self.strings])
-        for each in ((prob,) if self.kind == "line" else prob.strings):
+        for each in self.problems:
             each.target[:] = each.ends[0]
         outcome = self.functions["attempt"](prob, t1 - t)
         self.finish(prob)

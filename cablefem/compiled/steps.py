@@ -17,10 +17,12 @@ finds it.
 Compile time. Every function here is compiled once per scheme (``bound``): they are rebound to the
 scheme's functions, under names that carry the scheme's name and a hash of its code, so that each
 binding has its own on-disk cache. The strings of a group have one numba type (the catalog's records
-and the seabed's projector are the same for every line; only sizes differ), so they come in a
-homogeneous tuple indexed by a loop counter (``numba.literal_unroll`` versions each loop body per
-element: minutes). No numba runtime (the small solves' scratch is in the group), and no literal
-arguments (each compiles a callee once more: ``policy.FLAG``).
+and the seabed's projector are the same for every line; only sizes differ), so they come in numba's
+typed List (``strings_list``), whose type does not hold their number: one compilation serves every
+network. A tuple's does (each size compiled the group's steps again, minutes each, longer the more
+strings), and ``numba.literal_unroll`` versions each loop body per element. No numba runtime on a
+string (the small solves' scratch is in the group; the group's ops have it for the List), and no
+literal arguments (each compiles a callee once more: ``policy.FLAG``).
 """
 
 import hashlib
@@ -30,6 +32,7 @@ from types import FunctionType, ModuleType
 
 import numpy as np
 from numba import njit
+from numba.typed import List
 from numba import uint64 as _index  # an unsigned index: no wrap-around fix-up (cablefem.compiled.banded)
 
 from cablefem.compiled import kernels
@@ -62,12 +65,34 @@ Problem = namedtuple("Problem", "settings mesh bed water pts work projector free
                                 "X V A memory prediction rows X1 Xe Ve Ae guess base "
                                 "rhs step original band lu ipiv multipliers base_full base_reduced keeps commits "
                                 "clock factors scheme counters ends fractions target junction_ends Z S yE")
-#: the strings stepped together: the policy's settings, the strings (a homogeneous tuple of
-#: ``Problem``), the number of junctions, their step dq (3 J,), the string and node whose predictor
+#: the strings stepped together: the policy's settings, the strings (numba's typed List of ``Problem``:
+#: ``strings_list``), the number of junctions, their step dq (3 J,), the string and node whose predictor
 #: places each junction (J, 2) and that place (J, 3), the junctions' balance (J, 3), the group's
 #: residual scale, and scratch of the small solves: the junctions' system (3 J, 3 J), a string's end
 #: columns ZE and their inverse's work (6, 6), a column and a correction mu (6,)
 Group = namedtuple("Group", "settings strings junctions dq leaders at balance scale system ZE work column mu")
+
+@njit(cache=True)
+def _new_strings(first):
+    strings = List()
+    strings.append(first)
+    return strings
+
+
+@njit(cache=True)
+def _append_string(strings, p):
+    strings.append(p)
+
+
+def strings_list(problems):
+    """The ``Problem`` of each string of a group in numba's typed List (their arrays shared, not
+    copied), made and filled by compiled functions cached on disk (a List's own methods compile in
+    every process)."""
+    strings = _new_strings(problems[0])
+    for p in problems[1:]:
+        _append_string(strings, p)
+    return strings
+
 
 #: the scheme's arithmetic, bound per scheme by ``bound`` (``cablefem.dynamics.scheme``)
 scheme_begin = scheme_point = scheme_accept = scheme_error = None
@@ -504,7 +529,7 @@ def reactions(p, forces, k):
 # ------------------------------------------------------------------ the policy's ops on a group
 # (strings that meet at junctions: ``prob`` is a ``Group``; each op one compiled function, looping
 # over the strings with the string ops above)
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_evaluate(g, tangent, held):
     for k in range(len(g.strings)):
         lost = evaluate(g.strings[k], tangent, held)
@@ -513,7 +538,7 @@ def group_evaluate(g, tangent, held):
     return 0
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_finish(g):
     for k in range(len(g.strings)):
         lost = finish(g.strings[k])
@@ -522,7 +547,7 @@ def group_finish(g):
     return 0
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_norm(g):
     """The group's relative residual: every string's rows at its free nodes that are no junction
     end, and each junction's balance, the sum of its string ends' rows."""
@@ -543,7 +568,7 @@ def group_norm(g):
     return np.sqrt(total) / g.scale
 
 
-@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _junction_step(g):
     """g.dq (3 J) from sum over strings of S_k (dq_E - y_E,k) = 0 at every junction; False if singular."""
     n = 3 * g.junctions
@@ -571,7 +596,7 @@ def _junction_step(g):
     return _solve_small(A, b, n)
 
 
-@njit(cache=True, _nrt=False, no_cpython_wrapper=True)
+@njit(cache=True, no_cpython_wrapper=True)
 def _condense(g):
     """Every string's step y + Z S (dq_E - y_E) at its junctions' step dq; its largest scaled entry."""
     size = 0.0
@@ -592,7 +617,7 @@ def _condense(g):
     return size
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_increment(g, refactor):
     """Every string's Newton increment (``_increment``), each condensed onto its junction ends and
     the junctions' step solved (``_junction_step``); the largest entry, each string's scaled to the
@@ -616,36 +641,36 @@ def group_increment(g, refactor):
     return _condense(g)
 
 
-@njit(cache=True, inline="always", _nrt=False)
+@njit(cache=True, inline="always")
 def group_factors_current(g):
     return factors_current(g.strings[0])
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_forget_factors(g):
     for k in range(len(g.strings)):
         forget_factors(g.strings[k])
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_take_step(g, fraction):
     for k in range(len(g.strings)):
         take_step(g.strings[k], fraction)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_set_base(g):
     for k in range(len(g.strings)):
         set_base(g.strings[k])
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_restore_base(g):
     for k in range(len(g.strings)):
         restore_base(g.strings[k])
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_hold(g, again):
     held = False
     for k in range(len(g.strings)):
@@ -653,13 +678,13 @@ def group_hold(g, again):
     return held
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_save_original(g):
     for k in range(len(g.strings)):
         save_original(g.strings[k])
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_restore_original(g):
     size = 0.0
     for k in range(len(g.strings)):
@@ -671,7 +696,7 @@ def group_restore_original(g):
     return size
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_begin(g, h):
     """Every string's step of h; each junction where its leader string predicts it."""
     for k in range(len(g.strings)):
@@ -688,73 +713,73 @@ def group_begin(g, h):
                     p.guess[p.junction_ends[s, 2], a] = g.at[p.junction_ends[s, 1], a]
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_restart(g):
     for k in range(len(g.strings)):
         restart(g.strings[k])
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_accept(g, h):
     for k in range(len(g.strings)):
         accept(g.strings[k], h)
 
 
-@njit(cache=True, inline="always", _nrt=False)
+@njit(cache=True, inline="always")
 def group_auto_left(g):
     return auto_left(g.strings[0])
 
 
-@njit(cache=True, inline="always", _nrt=False)
+@njit(cache=True, inline="always")
 def group_set_auto_left(g, value):
     set_auto_left(g.strings[0], value)
 
 
-@njit(cache=True, inline="always", _nrt=False)
+@njit(cache=True, inline="always")
 def group_contraction(g):
     return contraction(g.strings[0])
 
 
-@njit(cache=True, inline="always", _nrt=False)
+@njit(cache=True, inline="always")
 def group_set_contraction(g, value):
     set_contraction(g.strings[0], value)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_count(g, counter, amount):
     for k in range(len(g.strings)):
         count(g.strings[k], counter, amount)
     return g.strings[0].counters[counter]
 
 
-@njit(cache=True, inline="always", _nrt=False)
+@njit(cache=True, inline="always")
 def group_time(g):
     return time(g.strings[0])
 
 
-@njit(cache=True, inline="always", _nrt=False)
+@njit(cache=True, inline="always")
 def group_last_step(g):
     return last_step(g.strings[0])
 
 
-@njit(cache=True, inline="always", _nrt=False)
+@njit(cache=True, inline="always")
 def group_record_residual(g, value):
     record_residual(g.strings[0], value)
 
 
-@njit(cache=True, inline="always", _nrt=False)
+@njit(cache=True, inline="always")
 def group_record_stop(g, h):
     record_stop(g.strings[0], h)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_place_ends(g, k, j, h):
     for s in range(len(g.strings)):
         place_ends(g.strings[s], k, j, h)
     return True
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_error(g):
     worst = -1.0
     for k in range(len(g.strings)):
@@ -765,28 +790,28 @@ def group_error(g):
     return worst
 
 
-@njit(cache=True, inline="always", _nrt=False)
+@njit(cache=True, inline="always")
 def group_last_error(g):
     return last_error(g.strings[0])
 
 
-@njit(cache=True, inline="always", _nrt=False)
+@njit(cache=True, inline="always")
 def group_record_error(g, value):
     record_error(g.strings[0], value)
 
 
-@njit(cache=True, inline="always", _nrt=False)
+@njit(cache=True, inline="always")
 def group_proposal(g):
     return proposal(g.strings[0])
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_set_proposal(g, value):
     for k in range(len(g.strings)):
         set_proposal(g.strings[k], value)
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True)
 def group_reactions(g, forces, k):
     """Every string's forces after step k into forces[k, string] (``_forces``)."""
     for s in range(len(g.strings)):

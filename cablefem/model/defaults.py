@@ -80,7 +80,8 @@ def moordyn_mesh(lines, water_density):
 def forcing_periods(motion, sea=None):
     """The periods [s] of what drives a scene: a harmonic or circular motion's period, twice a motion
     table's shortest row interval, a ramp, and
-    the waves' components of at least WAVE_AMPLITUDE_SHARE of the largest amplitude."""
+    the waves' components of at least WAVE_AMPLITUDE_SHARE of the largest amplitude, and twice the
+    interval of a current's record that varies in time (MoorDyn's Currents 2 and 4)."""
     periods = []
     if motion.kind in ("harmonic", "circular"):
         periods.append(motion.period)
@@ -90,8 +91,12 @@ def forcing_periods(motion, sea=None):
         periods.append(motion.ramp)
     if sea is not None:
         amplitude, omega = np.asarray(sea.amplitude, dtype=float), np.asarray(sea.omega, dtype=float)
-        strong = (amplitude >= WAVE_AMPLITUDE_SHARE * amplitude.max()) & (omega > 0.0)
-        periods += [2.0 * math.pi / w for w in omega[strong]]
+        if amplitude.size:  # a sea of no components carries a current alone
+            strong = (amplitude >= WAVE_AMPLITUDE_SHARE * amplitude.max()) & (omega > 0.0)
+            periods += [2.0 * math.pi / w for w in omega[strong]]
+        current = getattr(sea, "current", None)
+        if current is not None and current.velocity.shape[3] > 1 and current.dt > 0.0:
+            periods.append(2.0 * current.dt)  # the shortest period its record resolves
         if sea.ramp > 0.0:
             periods.append(sea.ramp)
     return [p for p in periods if p > 0.0]

@@ -27,7 +27,7 @@ KEY_UNITS = {
     ("points.NAME", "CdA"): "m^2", ("points.NAME", "force"): "N",
     ("bodies.NAME", "position"): "m", ("bodies.NAME", "rotation_deg"): "deg",
     ("bodies.NAME", "waterplane_area"): "m^2", ("bodies.NAME", "motion.period"): "s",
-    ("bodies.NAME", "motion.ramp"): "s",
+    ("bodies.NAME", "motion.ramp"): "s", ("bodies.NAME", "CdA"): "m^2 (m^5 for the rotations)",
     ("soil", "su_gradient"): "Pa/m", ("soil", "su_mudline"): "Pa", ("soil", "stiffness_normal"): "1/m",
     ("soil", "stiffness_tangential"): "1/m",
     ("motion", "amplitude"): "m", ("motion", "period"): "s", ("motion", "offset"): "m", ("motion", "radius"): "m",
