@@ -30,11 +30,13 @@ from test_loads import (ROPE, assert_tangent_matches_finite_differences, line_st
 ROPE_VARIANTS = ["damping_table", "viscoelastic", "load_dependent", "syrope", "syrope_exp", "slack", "rod"]
 
 #: every catalog load, the two that see the current once more in a current varying with depth, the
-#: contact and its friction with the seabed's damper acting on points moving out too, in waves (the
+#: contact and its friction with the seabed's damper acting on points moving out too, and engaging over
+#: a depth that holds most of the penetrating points inside its ramp, in waves (the
 #: Morison load is the line's in waves; points see the waves too), with a current on a grid varying in
 #: time besides (MoorDyn-C's Currents 5), and the rope's laws
 NAMES = [spec.name for spec in catalog.CATALOG] + ["drag+profile", "points+profile", "contact+opening",
-                                                   "friction+opening", "morison+profile", "points+waves",
+                                                   "friction+opening", "contact+ramp", "friction+ramp",
+                                                   "morison+profile", "points+waves",
                                                    "points+waves-profile", "morison+grid", "points+waves-grid"] \
     + [f"rope+{kind}" for kind in ROPE_VARIANTS]
 #: the step of the tests' evaluations [s]: a rope's slow strain steps over it (``cablefem.loads.rope``)
@@ -63,7 +65,8 @@ def one_load_system(name, order):
     in two segments with a clump weight at their joint and a buoy at its free fairlead end, half out
     of the water; the soil, whose points lie below the seabed, on its own line
     (``test_loads.soil_system``). '+profile': the same load in a sheared current; '+opening': the
-    seabed's damper acting on points moving out too (MoorDyn-C's law); the bending, on Hermite
+    seabed's damper acting on points moving out too (MoorDyn-C's law); '+ramp': the damper engaging
+    over a depth deeper than the points' penetrations; the bending, on Hermite
     elements only, of the rope with EI."""
     name, _, variant = name.partition("+")
     if name == "bending" and order != "hermite":
@@ -100,6 +103,8 @@ def one_load_system(name, order):
     system.loads = [[load for load in system.loads if catalog.spec_of(load).name == wanted][-1]
                     for wanted in catalog.spec(name).reads + (name,)]
     system.loads[0].opening = variant == "opening"
+    if variant == "ramp":  # deeper than the test states' penetrations (``SeabedContact.ramp``)
+        system.loads[0].ramp[:] = 1.0
     return system
 
 

@@ -115,13 +115,13 @@ def test_largest_step_follows_the_shortest_strong_wave_period():
     assert defaults.forcing_periods(table) == [1.0, 17.0]  # twice its rows' interval, and its ramp
 
 
-@pytest.mark.xfail(strict=True, reason="fails again: Newton does not converge at t = 44.5 s even with dt = 4.4e-4 s "
-                   "(relative residual 9.5e-5), on the defaults branch alone as on main; not yet diagnosed")
 def test_oc4_adaptive_with_steps_up_to_02_s_runs_past_where_it_failed(tmp_path):
     """Issue 33's case: OC4's chains, P1 x NumSegs, adaptive BDF2 allowed steps of 0.2 s, failed with
-    "Newton did not converge at t = 77.1 s" (the compiled steps never grew after a cut step). It
-    runs to 80 s now (in ~19,000 steps: the error control holds line 2's snaps to 3e-4 of its peak
-    tension per step)."""
+    "Newton did not converge at t = 77.1 s" (the compiled steps never grew after a cut step), then at
+    t = 44.5 s with its residual stuck at 9.5e-5 at every step down to 4.4e-4 s: the seabed damper
+    (cBot) switched on in full as a moving point touched down, a jump in the residual that no step
+    can solve (the same run without cBot completed). The damper engages over a depth now
+    (``cablefem.loads.contact``), and the run goes to 80 s."""
     from dataclasses import replace
 
     from cablefem.runs.run import run_scene

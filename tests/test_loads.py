@@ -487,3 +487,32 @@ def soil_state(system, rng, attempts=20):
             V, A = rng.standard_normal(X.shape), rng.standard_normal(X.shape)
             return system.state(X, V, A), X, V, A
     raise AssertionError(f"no soil test state away from the kinks in {attempts} draws: {margins}, {counts}")
+
+
+def test_the_seabed_damper_engages_over_its_ramp_and_has_no_jump():
+    """f_z = k p + c s(p) |v_z| for a point at penetration p closing at v_z, s = min(p / delta, 1)
+    (``cablefem.loads.contact``): no damping at the surface (the force continuous where Eq. 11's jumps
+    by c |v_z|), half at delta / 2, all of it below delta; dF/dr and dF/dv are the force's own
+    (finite differences), and delta is half the penetration at which the spring carries the weight."""
+    from cablefem.loads.contact import ramp_depth
+
+    k, c, delta, vz = 1e5, 2e4, 0.01, -0.1
+    seabed = Plane((0.0, 0.0, -100.0), (0.0, 0.0, 1.0))
+    contact = SeabedContact(seabed, [k], [c], opening=True, ramp=[delta])
+
+    def force(p, v=vz, jacobian=False):
+        state = State(r=np.array([0.0, 0.0, -100.0 - p]).reshape(3, 1, 1),
+                      dr=np.array([1.0, 0.0, 0.0]).reshape(3, 1, 1), v=np.array([0.0, 0.0, v]).reshape(3, 1, 1))
+        return contact.evaluate(state, jacobian=jacobian)
+
+    for p, share in ((1e-12, 0.0), (delta / 2, 0.5), (0.02, 1.0)):
+        assert force(p).force[2, 0, 0] == pytest.approx(k * p + c * share * -vz, rel=1e-6, abs=1e-6)
+    terms, h = force(delta / 4, jacobian=True), 1e-7
+    slope_r = -(force(delta / 4 + h).force[2, 0, 0] - force(delta / 4 - h).force[2, 0, 0]) / (2 * h)
+    slope_v = (force(delta / 4, vz + h).force[2, 0, 0] - force(delta / 4, vz - h).force[2, 0, 0]) / (2 * h)
+    assert terms.force_r[2, 2, 0, 0] == pytest.approx(slope_r, rel=1e-6)
+    assert terms.force_v[2, 2, 0, 0] == pytest.approx(slope_v, rel=1e-6)
+    props = {"mass": np.array([113.35]), "area": np.array([np.pi * 0.0766 ** 2 / 4]), "diameter": np.array([0.0766])}
+    weight = (113.35 - 1025.0 * np.pi * 0.0766 ** 2 / 4) * 9.81
+    assert ramp_depth(Contact(stiffness=3e6), props, Environment(water_density=1025.0, gravity=9.81))[0] == \
+        pytest.approx(weight / (2 * 3e6 * 0.0766), rel=1e-12)

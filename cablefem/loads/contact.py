@@ -1,7 +1,7 @@
 """Seabed contact per unit unstretched length: the normal force (desire2023 Eq. 11; housner2022
 Eq. 4), both faces.
 
-f_n = -d G_K min(d_G, 0) d_P - c min(v_n, 0) d_P   while d_G < 0,
+f_n = -d G_K min(d_G, 0) d_P - c s(d_G) min(v_n, 0) d_P   while d_G < 0,
 
 with d_G the penetration depth and d_P the projection direction of the
 seabed (geometry package), d the contact diameter, G_K the ground stiffness
@@ -9,6 +9,14 @@ per unit area [N/m^3] and v_n = v . d_P. The damping per unit length c is
 2 G_c sqrt(G_K d m) (Eq. 11, G_c the fraction of critical) or, given as
 MoorDyn's cBot [N s/m^3], cBot d. On a plane d_G is the distance to the
 plane, which equals MoorDyn's (z_b - r_3) n_z of housner2022 Eq. 4.
+
+The damper engages over a depth: s(d_G) = min(-d_G / delta, 1), with delta half the depth at
+which the spring carries the element's submerged weight w, delta = |w| / (2 d G_K)
+(``ramp_depth``; 2 mm for OC4's chain on kBot 3e6). Eq. 11 and MoorDyn switch it on in full at
+d_G = 0: a force that jumps by c v_n as a point moving at v_n touches down or lifts off, where
+an implicit step's residual may have no root at all. Adaptive BDF2 on OC4's chains (cBot 3e5)
+stopped on one, its residual stuck at 1e-4 at every step size down to 4e-4 s; without cBot it
+ran (tests/test_defaults.py). A resting point, at twice delta, is damped in full as before.
 
 The damper resists closing only (Eq. 11's min(v_n, 0)): it does not hold a point back as it
 lifts off. With ``opening`` (``[seabed] damping_when_opening``, MoorDyn-C's law: its
@@ -59,11 +67,13 @@ class SeabedContact:
 
     name = "contact"
 
-    def __init__(self, seabed, stiffness, damping, opening=False):
+    def __init__(self, seabed, stiffness, damping, opening=False, ramp=0.0):
         self.seabed = seabed
         self.stiffness = np.asarray(stiffness, dtype=float)[:, None]  # G_K d [N/m^2]
         self.damping = np.asarray(damping, dtype=float)[:, None]  # [N s/m^2]
         self.opening = bool(opening)  # the damper acts on points moving out too (MoorDyn-C)
+        # the depth over which the damper engages, delta [m] per element (0: at once, Eq. 11)
+        self.ramp = np.broadcast_to(np.asarray(ramp, dtype=float), self.damping.shape[:1])[:, None].copy()
 
     def evaluate(self, state, jacobian=True):
         r = state.r
@@ -78,7 +88,8 @@ class SeabedContact:
         vn = None if state.v is None else np.einsum("ceq,ceq->eq", state.v, n)
         if damped:
             closing = touching & ((vn < 0.0) | self.opening)
-            pressure = pressure - self.damping * np.where(closing, vn, 0.0)
+            engaged = np.where(closing, _engaged(gap, self.ramp), 0.0)  # s(d_G)
+            pressure = pressure - self.damping * engaged * vn
         terms = Terms(force=pressure * n)
         handed = state.handed["contact"] = NormalForce(pressure, n, vn)
         if not jacobian:
@@ -91,9 +102,11 @@ class SeabedContact:
         dpressure_dr = -self.stiffness * on * grad_gap
         dpressure_dv = None
         if damped:
-            c = self.damping * closing
-            # v_n = v . n(r): d v_n/dr = v . dn/dr
-            dpressure_dr = dpressure_dr - c * np.einsum("aeq,abeq->beq", state.v, dn)
+            c = self.damping * engaged
+            # v_n = v . n(r): d v_n/dr = v . dn/dr; s = -d_G / delta inside the ramp
+            inside = closing & (gap < 0.0) & (-gap < self.ramp)
+            slope = np.where(inside, self.damping * vn / np.where(inside, self.ramp, 1.0), 0.0)
+            dpressure_dr = dpressure_dr - c * np.einsum("aeq,abeq->beq", state.v, dn) + slope * grad_gap
             dpressure_dv = -c * n
             terms.force_v = outer(n, dpressure_dv)
         terms.force_r = outer(n, dpressure_dr) + pressure * dn
@@ -109,7 +122,22 @@ class SeabedContact:
 
     def params(self):
         """The compiled face's parameters per element (``SPEC.params``), each (nel,)."""
-        return {"k": self.stiffness[:, 0], "c": self.damping[:, 0], "opening": self.opening}
+        return {"k": self.stiffness[:, 0], "c": self.damping[:, 0], "opening": self.opening,
+                "ramp": self.ramp[:, 0]}
+
+
+def _engaged(gap, ramp):
+    """The damper's share s(d_G) = min(-d_G / delta, 1) at penetration -d_G (1 where delta is 0)."""
+    safe = np.where(ramp > 0.0, ramp, 1.0)
+    return np.where(ramp > 0.0, np.clip(-gap / safe, 0.0, 1.0), 1.0)
+
+
+def ramp_depth(contact, props, environment):
+    """delta per element [m]: half the depth at which the seabed spring carries the element's submerged
+    weight, |m - rho A| g / (2 d G_K); 0 where the seabed has no stiffness."""
+    weight = np.abs(props["mass"] - environment.water_density * props["area"]) * environment.gravity
+    stiffness = contact.stiffness * props["diameter"]
+    return np.where(stiffness > 0.0, weight / (2.0 * np.where(stiffness > 0.0, stiffness, 1.0)), 0.0)
 
 
 def _project(seabed, points, derivatives):
@@ -151,8 +179,15 @@ def contact_point(ctx, p, old, new, state, hold, out):
     vn = dot(v, n)
     closing = touching and c > 0.0 and ((bits & DAMPER_ON) != 0 if (bits & DAMPERS) != 0 else
                                         (vn < 0.0 or c_.opening))
+    engaged, slope = 1.0, 0.0  # the damper's share s(d_G) and c v_n ds/d(-d_G) inside its ramp
+    if closing and c_.ramp > 0.0:
+        if gap >= 0.0:
+            engaged = 0.0
+        elif -gap < c_.ramp:
+            engaged = -gap / c_.ramp
+            slope = c * vn / c_.ramp
     if closing:
-        pressure -= c * vn
+        pressure -= c * engaged * vn
     for i in range(3):
         f[i] += pressure * n[i]
     if jac:
@@ -163,8 +198,9 @@ def contact_point(ctx, p, old, new, state, hold, out):
         if closing:
             for j in range(3):
                 if curved:
-                    dp_dr[j] -= c * (v[0] * dn[0, j] + v[1] * dn[1, j] + v[2] * dn[2, j])
-                dp_dv[j] = -c * n[j]
+                    dp_dr[j] -= c * engaged * (v[0] * dn[0, j] + v[1] * dn[1, j] + v[2] * dn[2, j])
+                dp_dr[j] += slope * grad_gap[j]
+                dp_dv[j] = -c * engaged * n[j]
             add_outer(Ab, n, dp_dv, -v_x)
         add_outer(Ab, n, dp_dr, -1.0)
         if curved:
@@ -208,7 +244,8 @@ def build(setting):
         return None
     props, contact = setting.props, setting.contact
     return SeabedContact(setting.seabed, contact.stiffness * props["diameter"], contact_damping(contact, props),
-                         opening=contact.damping_when_opening)
+                         opening=contact.damping_when_opening,
+                         ramp=ramp_depth(contact, props, setting.environment))
 
 
 def contact_damping(contact, props):
@@ -218,7 +255,7 @@ def contact_damping(contact, props):
     return 2.0 * contact.damping_ratio * np.sqrt(contact.stiffness * props["diameter"] * props["mass"])
 
 
-SPEC = LoadSpec("contact", "full", (("k", "f8"), ("c", "f8"), ("opening", "?")), contact_point, SeabedContact,
+SPEC = LoadSpec("contact", "full", (("k", "f8"), ("c", "f8"), ("opening", "?"), ("ramp", "f8")), contact_point, SeabedContact,
                 state=(("bits", "i1"),), hold=(("bits", "i1"),), hold_rule=contact_hold, build=build,
                 # handed to friction (``cablefem.loads.friction``, whose spec reads "contact"), written at
                 # every point of a line with contact: whether the point rubs on the seabed (in it, on the
