@@ -4,6 +4,7 @@ process (``tests/test_catalog_extension.py``), started beside the other tests.""
 import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -23,6 +24,10 @@ from cablefem.compiled import progress  # noqa: E402
 # the test processes do not announce their compilations: tests read their own stderr line by line
 # (commands run in a child process still do: tests/test_first_run.py)
 progress.ANNOUNCE.said = True
+
+# pytest-xdist's workers start with SIGINT ignored, and a child process inherits an ignored signal:
+# the tests that interrupt a run (tests/test_signals.py, tests/test_output.py) need Python's handler
+signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 @pytest.fixture
