@@ -60,7 +60,8 @@ def test_compiled_steps_equal_the_python_steps(order, elements, dt, motion, iter
     assert s1 == s2
     if iterations < 12:
         assert s1["rejected"] > 0  # the halving path was exercised ...
-        assert s1["corrections"] > 0  # ... and the Newton steps solved again on new branches
+        if newton != "modified":  # modified Newton solves again on new branches only with new factors,
+            assert s1["corrections"] > 0  # ... and the Newton steps solved again on new branches
 
 
 def test_branch_corrections_save_evaluations_and_keep_the_solution():
@@ -133,7 +134,7 @@ def test_compiled_steps_project_curved_seabeds_as_the_python_steps(seabed):
 
 @pytest.mark.parametrize("iterations, smallest, python_steps", [
     (3, 0.04 / 4, False),  # failed steps halved twice, all inside the compiled loop
-    (2, 0.04 / 32, True),  # halved five times: deeper than the loop's DEPTH, step() goes on
+    (2, 0.04 / 16, True),  # halved four times: deeper than the loop's DEPTH, step() goes on
 ])
 def test_compiled_steps_halve_and_grow_back_as_step_does(iterations, smallest, python_steps):
     """A step whose Newton fails is halved in the compiled loop, up to DEPTH times, and the steps
