@@ -312,3 +312,23 @@ def test_adaptive_steps_that_cannot_meet_their_error_stop_with_the_solvers_messa
     scene = hang_scene(tmp_path, HEAVE, duration=4.0, solver="adaptive = true\n", name="heave.toml")
     with pytest.raises(ConvergenceError, match=r"at t = [0-9.]+ s .*dt = .*try "):
         run_scene(scene, str(tmp_path / "out"), progress=False)
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_the_step_error_is_the_tension_the_difference_makes(order):
+    """``Integrator.tension_error``: the difference dX between a step's positions and a solution of
+    lower order, as a tension, EA t . d(dX)/ds over the line's largest tension. A transverse
+    difference that is linear along the line (a rotation of the taut line, to first order) makes
+    no tension: no error; a uniform axial stretch of it, EA times the strain it adds; the sum,
+    the axial one's (the full vector |d(dX)/ds| counted a seabed strike's sideways difference as
+    tension: the error control rejected OC4's steps down to 1 ms, tests/test_defaults.py)."""
+    system, X, line_type = taut_line(order, 8)
+    integ = BDF2(system, X, lambda t: (system.line.fairlead, np.zeros(3), np.zeros(3)), dt=0.01)
+    s = X[:, 0] / 101.0
+    sideways = np.column_stack([0 * s, 1e-3 * s, -2e-3 * s])
+    along = np.column_stack([1e-4 * X[:, 0], 0 * s, 0 * s])
+    tension = line_type.EA * 0.01
+    assert integ.tension_error(X - sideways, X) < 1e-12
+    assert integ.tension_error(X - along, X) == pytest.approx(line_type.EA * 1.01e-4 / tension, rel=1e-9)
+    assert integ.tension_error(X - along - sideways, X) == pytest.approx(line_type.EA * 1.01e-4 / tension,
+                                                                            rel=1e-5)

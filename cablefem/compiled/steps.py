@@ -463,8 +463,10 @@ def _tension_error(p, X1, low):
                 r0 += w * X1[i, 0]
                 r1 += w * X1[i, 1]
                 r2 += w * X1[i, 2]
-            largest = max(largest, EA * np.sqrt(d0 * d0 + d1 * d1 + d2 * d2))
-            tension = max(tension, EA * max(np.sqrt(r0 * r0 + r1 * r1 + r2 * r2) - 1.0, 0.0))
+            stretch = np.sqrt(r0 * r0 + r1 * r1 + r2 * r2)
+            if stretch > 0.0:  # the strain's part: the tangent's component
+                largest = max(largest, EA * abs(r0 * d0 + r1 * d1 + r2 * d2) / stretch)
+            tension = max(tension, EA * max(stretch - 1.0, 0.0))
     return largest / max(tension, 1e-12 * stiffest)
 
 

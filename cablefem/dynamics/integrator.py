@@ -360,8 +360,10 @@ class Integrator:
         _, d_diff = fem.at_quadrature(X - X_low, fem.reduced)
         _, dr = fem.at_quadrature(X, fem.reduced)
         EA = self.system.props["EA"][:, None]
-        error = EA * np.linalg.norm(d_diff, axis=0)
-        tension = EA * np.maximum(np.linalg.norm(dr, axis=0) - 1.0, 0.0)
+        stretch = np.linalg.norm(dr, axis=0)
+        # the strain's part of the difference: its component along the tangent dr / |dr|
+        error = EA * np.abs(np.einsum("ceq,ceq->eq", dr, d_diff)) / np.where(stretch > 0.0, stretch, 1.0)
+        tension = EA * np.maximum(stretch - 1.0, 0.0)
         return float(error.max() / max(tension.max(), 1e-12 * EA.max()))
 
     def reactions(self):
