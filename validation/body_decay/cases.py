@@ -22,10 +22,22 @@ INPUT = os.path.join(HERE, "inputs", "buoy.dat")
 BODY_ROW = re.compile(r"^(1\s+free\s+)(\S+\s+){6}", re.M)
 
 
-def with_pose(text, pose):
-    """The file's text with the body's pose (x, y, z [m], roll, pitch, yaw [rad])."""
+#: a line's row of the file: ID, type, ends, length, then NumSegs
+LINE_ROW = re.compile(r"^(\d+\s+chain\s+\d+\s+\d+\s+\S+\s+)(\d+)", re.M)
+#: the solver options' dtM row
+DTM_ROW = re.compile(r"^\S+(\s+dtM\b)", re.M)
+
+
+def with_pose(text, pose, numsegs=None, dtM=None):
+    """The file's text with the body's pose (x, y, z [m], roll, pitch, yaw [rad]), and each line's
+    NumSegs and the time step dtM [s] where given."""
     values = list(pose[:3]) + list(np.degrees(pose[3:]))
-    return BODY_ROW.sub(lambda match: match.group(1) + "".join(f"{v:.10g}   " for v in values), text, count=1)
+    text = BODY_ROW.sub(lambda match: match.group(1) + "".join(f"{v:.10g}   " for v in values), text, count=1)
+    if numsegs is not None:
+        text = LINE_ROW.sub(lambda match: match.group(1) + str(numsegs), text)
+    if dtM is not None:
+        text = DTM_ROW.sub(lambda match: f"{dtM:g}" + match.group(1), text, count=1)
+    return text
 
 
 def equilibrium():
@@ -37,8 +49,18 @@ def equilibrium():
     return network.poses["body1"].copy()
 
 
-def cablefem_decay(pose, duration, dt, integrator, rho_inf=0.9):
-    """cablefem: times (n,) [s] and poses (n, 6) of the body released at rest from ``pose``."""
+def with_mesh(scene, order, elements):
+    """``scene`` with every line on ``elements`` elements of ``order`` (None: as the file reads)."""
+    if order is None:
+        return scene
+    return replace(scene, lines=[replace(line, order=order, segments=tuple(replace(s, elements=elements)
+                                                                            for s in line.segments))
+                                 for line in scene.lines])
+
+
+def cablefem_decay(pose, duration, dt, integrator, rho_inf=0.9, order=None, elements=None):
+    """cablefem: times (n,) [s] and poses (n, 6) of the body released at rest from ``pose``, its lines
+    on ``elements`` elements of ``order`` each (None: the file's mesh by cablefem's defaults)."""
     from cablefem.dynamics.body_group import body_groups
     from cablefem.dynamics.registry import INTEGRATORS, integrator_options
     from cablefem.fem.system import build_system
@@ -50,7 +72,7 @@ def cablefem_decay(pose, duration, dt, integrator, rho_inf=0.9):
         path = os.path.join(folder, "released.dat")
         with open(path, "w", encoding="utf-8") as handle:
             handle.write(with_pose(open(INPUT, encoding="utf-8").read(), pose))
-        scene = load_scene(path)
+        scene = with_mesh(load_scene(path), order, elements)
     scene = replace(scene, solver=replace(scene.solver, integrator=integrator, rho_inf=rho_inf))
     held = replace(scene, bodies={name: replace(body, kind="fixed") for name, body in scene.bodies.items()},
                    lines=[replace(line, prescribed=(True, True)) for line in scene.lines])  # anchor to body
@@ -67,9 +89,10 @@ def cablefem_decay(pose, duration, dt, integrator, rho_inf=0.9):
     return times, np.array([pose for _, pose in body.history]), integrators[0].newton_iterations
 
 
-def moordyn_decay(pose, duration, dt_out):
+def moordyn_decay(pose, duration, dt_out, numsegs=None, dtM=None):
     """MoorDyn-C: times (n,) [s] and poses (n, 6) of the body released at rest from ``pose`` (its
-    angles from ``moordyn.GetBodyState``, radians)."""
+    angles from ``moordyn.GetBodyState``, radians), each line on ``numsegs`` segments and stepping
+    ``dtM`` [s] where given (the file's otherwise)."""
     import moordyn
 
     from validation.moordyn.peer import silenced_stdout
@@ -77,7 +100,7 @@ def moordyn_decay(pose, duration, dt_out):
     with tempfile.TemporaryDirectory() as folder:
         path = os.path.join(folder, "released.dat")
         with open(path, "w", encoding="utf-8") as handle:
-            handle.write(with_pose(open(INPUT, encoding="utf-8").read(), pose))
+            handle.write(with_pose(open(INPUT, encoding="utf-8").read(), pose, numsegs, dtM))
         with silenced_stdout():
             system = moordyn.Create(path)
             moordyn.Init(system, [], [])
