@@ -30,7 +30,7 @@ Rows, each run as a user runs it, in this process:
   (``validation.moordyn.runners.run_moordyn_case``).
 - ``cablefem, defaults``: ``cablefem.runs.run.run_scene`` on the scene as it is (what ``cablefem
   run examples/oc4_semi.toml`` does, its outputs written to a temporary folder), with the defaults
-  its physics chooses (docs/scene.md, "Defaults by physics": P2 x NumSegs / 2, fixed steps of 1/40
+  its physics chooses (docs/scene.md, "Defaults by physics": P2 x NumSegs / 2 up to NumSegs 20, fixed steps of 1/40
   and frames every 1/10 of the motion's period); the label names them.
 - ``cablefem, best``: the same with the element order, element count, fixed step and Newton tolerance
   of ``SYSTEMS[...]["best"]`` (frames as at the defaults), picked with verification/work_precision's findings (P2 elements,
@@ -79,36 +79,35 @@ References, cached in ``systems.json`` next to this script (``--reference`` reco
 
     python -m benchmarks.systems [--reference] [--repeats N] [--systems oc4-semi] [--json FILE]
 
-Last measured on the shared 2-core machine (load ~9), CPU s per simulated second, medians of 3
-rounds (the oc4-semi rows with ``--systems oc4-semi``); errors in % RMS against the code's own
-reference and against the other's:
+Last measured on the shared 2-core machine (load ~6), CPU s per simulated second, medians of 3
+rounds, all systems in one run; errors in % RMS against the code's own reference and against the
+other's:
 
     oc4-semi (100 s)                              run     steps   error  other  run ratio  steps ratio
-    MoorDyn-C, the file (20 segments, dtM 1e-3)   0.0179  0.0149   2.84   1.88   1.00       1.00
-    cablefem, defaults (P2 x 10, dt 0.25)         0.0053  0.0031   1.90   4.03   0.29       0.21
-    cablefem, best (P2 x 7, dt 0.4, tol 1e-4)     0.0046  0.0026   2.63   3.79   0.26       0.17
+    MoorDyn-C, the file (20 segments, dtM 1e-3)   0.0152  0.0122   2.84   1.88   1.00       1.00
+    cablefem, defaults (P2 x 10, dt 0.25)         0.0032  0.0019   1.99   4.06   0.21       0.15
+    cablefem, best (P2 x 7, dt 0.4, tol 1e-4)     0.0025  0.0013   2.41   3.33   0.17       0.10
+
+    semi-taut (59.6 s)                            run     steps   error  other  run ratio  steps ratio
+    MoorDyn-C, the file (dtM 5e-4)                0.7588  0.0727   1.02   1.00   1.00       1.00
+    cablefem, the scene (P1 x NumSegs, dt 0.005)  0.0777  0.0493   0.73   0.87   0.10       0.68
+    cablefem, best (P2 x NumSegs / 2, dt 0.05)    0.0387  0.0192   0.68   1.01   0.05       0.26
 
     flume-snap (36 s)                             run     steps   error  other  run ratio  steps ratio
-    MoorDyn-C, the file (20 segments, dtM 5e-3)   0.0021  0.0021  28.39  28.32   1.00       1.00
-    cablefem, defaults (P2 x 10, dt 0.15)         0.0032  0.0012  11.44  11.26   1.48       0.55
-    cablefem, best (P1 x 14, dt 0.17, tol 1e-4)   0.0030  0.0010  18.90  19.10   1.39       0.47
-
-    semi-taut (59.6 s), load ~8                 run     steps   error  other  run ratio  steps ratio
-    MoorDyn-C, the file (dtM 5e-4)              0.7898  0.0766   1.02   1.00   1.00       1.00
-    cablefem, the scene (P1 x NumSegs, dt 0.005) 0.0998 0.0572   0.73   0.87   0.13       0.75
-    cablefem, best (P2 x NumSegs / 2, dt 0.05)  0.0585  0.0242   0.68   1.01   0.07       0.32
+    MoorDyn-C, the file (20 segments, dtM 5e-3)   0.0018  0.0018  28.39  28.39   1.00       1.00
+    cablefem, defaults (P2 x 10, dt 0.15)         0.0023  0.0008  11.89  11.76   1.29       0.46
+    cablefem, best (P1 x 14, dt 0.17, tol 1e-4)   0.0020  0.0006  18.77  18.95   1.12       0.34
 
 The semi-taut file's run is mostly MoorDyn-C's initial-condition solve (dynamic relaxation of the
 clumps and buoys at dtM: 90 % of its in-process time).
 
 Issue 33's target for OC4 at the defaults (error no larger than MoorDyn-C's in <= 0.25x its
-in-process time) is not met: the error is (1.90 % against 2.84 %), the time is 0.29x (the steps
-alone 0.21x). What is left beyond the steps, 0.22 s of the 0.53 s run, is the statics, the set-up
-and the 100 frames, each of which ends a compiled march (frames every 0.25 s took 2.2x the run of
-frames every 1 s). The best settings found, frames as at the defaults, take 0.26x. A fresh
-``cablefem run examples/oc4_semi.toml`` took 1.93 and 2.12 s of CPU (user + system, two runs),
-1.2-1.3x MoorDyn-C's in-process 1.67 s (the issue's target: <= 1.5x). The flume file is MoorDyn-C's
-cheapest case (21 nodes, dtM 5 ms: 0.08 s for 36 s), where cablefem's statics and set-up alone
+in-process time) is met: 1.99 % against 2.84 % in 0.21x (the steps alone 0.15x). Beyond the steps,
+0.13 s of the 0.32 s run is the statics, the set-up and the 100 frames (each ends a compiled
+march). The best settings found, frames as at the defaults, take 0.17x. A fresh
+``cablefem run examples/oc4_semi.toml`` took 1.91 and 1.75 s of CPU (user + system, two runs),
+1.15-1.26x MoorDyn-C's in-process 1.52 s (the issue's target: <= 1.5x). The flume file is MoorDyn-C's
+cheapest case (21 nodes, dtM 5 ms: 0.07 s for 36 s), where cablefem's statics and set-up alone
 cost about that.
 """
 

@@ -19,16 +19,19 @@ def test_moordyn_line_at_defaults_is_as_accurate_in_statics_as_its_numsegs():
     """MoorDyn's lumped mass at N segments is, in statics, cablefem's P1 on N elements (the consistent
     load of a uniform weight is the lumped one; the tension is constant per element). The fairlead
     tension errors against P2 x 320 scatter with where the touchdown falls in an element, so their
-    power-law fits are compared: at NumSegs 10 and 20 the default mesh's fitted error is at most
-    P1 x NumSegs's, on OC4's chain and the flume chain."""
+    power-law fits are compared: at NumSegs 10, 20, 40 and 80 the default mesh's fitted error is at
+    most P1 x NumSegs's, on OC4's chain and the flume chain; above NumSegs 20 half as many P2 elements
+    would not be (the reason the count grows faster there)."""
     from verification.work_precision import numsegs
 
     for name, path in numsegs.FILES.items():
         result = numsegs.study(name, path)
         (c1, p1), (c2, p2) = result["p1_fit"], result["p2_fit"]
         assert p1 > 2.0 and p2 > 1.5, (name, p1, p2)  # both converge: the fits mean something
-        for count in (10, 20):
+        for count in (10, 20, 40, 80):
             assert c2 * defaults.moordyn_elements(count) ** -p2 <= c1 * count ** -p1, (name, count)
+        for count in (40, 80):
+            assert c2 * math.ceil(count / 2) ** -p2 > c1 * count ** -p1, (name, count)
 
 
 def test_moordyn_file_gets_p2_from_numsegs_and_a_note_naming_the_choice():

@@ -3,8 +3,9 @@
 
 - **A MoorDyn line's mesh.** NumSegs states an accuracy, MoorDyn's lumped-mass error at NumSegs
   segments, not a mesh to copy: a line whose element count and order no key sets gets P2 elements,
-  ``ceil(NumSegs / NUMSEGS_PER_P2)`` per MoorDyn line, the fewest that are at least as accurate
-  (verification/work_precision/numsegs.py derives the ratio). A line on Hermite elements (EI > 0)
+  ``ceil(NumSegs / NUMSEGS_PER_P2)`` per MoorDyn line up to NumSegs ``FITTED_NUMSEGS``, and above it
+  ``FITTED_NUMSEGS / NUMSEGS_PER_P2 x (NumSegs / FITTED_NUMSEGS)^NUMSEGS_GROWTH`` rounded up, the fewest
+  that are at least as accurate by the error's fits (verification/work_precision/numsegs.py derives both). A line on Hermite elements (EI > 0)
   keeps NumSegs of them (the ratio was measured on Lagrange elements), a line with a buoyant
   segment P1 x NumSegs (``keeps_numsegs``: a P2 element floating at zero tension folds).
 - **The step.** Fixed steps of a fortieth of the shortest period of what drives the scene (a motion's
@@ -29,9 +30,15 @@ import numpy as np
 #: its lumped mass at NumSegs 10-20 in statics by the error's fits (verification/work_precision/numsegs.py:
 #: 0.36-0.50 NumSegs needed)
 NUMSEGS_PER_P2 = 2
+#: above FITTED_NUMSEGS the P2 count grows as NumSegs^NUMSEGS_GROWTH, the fits' p1 / p2 (P1's error
+#: falls as N^-p1, P2's as n^-p2: 1.42 on OC4's chain, 1.36 on the flume chain; the larger is kept),
+#: from NumSegs / NUMSEGS_PER_P2 at FITTED_NUMSEGS: 27 at NumSegs 40 and 72 at 80, where the fits ask
+#: for 25.6-25.9 and 65.7-69.5 (P2 x NumSegs / 2 falls short there)
+FITTED_NUMSEGS = 20
+NUMSEGS_GROWTH = 1.42
 #: the element order a MoorDyn line gets where no key sets its order or element count
 MOORDYN_ORDER = 2
-#: fixed steps per shortest forcing period (OC4's chains at P2 x 10: 1.9 % RMS at 40, 2.9 % at 20,
+#: fixed steps per shortest forcing period (OC4's chains at P2 x 10: 2.0 % RMS at 40, 3.3 % at 20,
 #: MoorDyn-C's file 2.8 %; benchmarks/systems.py)
 FIXED_STEPS_PER_PERIOD = 40
 #: adaptive steps per shortest forcing period at most; and the largest step of a scene driven by none [s]
@@ -45,8 +52,11 @@ WAVE_AMPLITUDE_SHARE = 0.1
 
 
 def moordyn_elements(numsegs):
-    """P2 elements that reach at least the accuracy of MoorDyn's ``numsegs`` segments (int)."""
-    return max(1, math.ceil(numsegs / NUMSEGS_PER_P2))
+    """P2 elements that reach at least the accuracy of MoorDyn's ``numsegs`` segments (int): half of
+    them up to FITTED_NUMSEGS, above it growing as numsegs^NUMSEGS_GROWTH."""
+    if numsegs <= FITTED_NUMSEGS:
+        return max(1, math.ceil(numsegs / NUMSEGS_PER_P2))
+    return math.ceil(FITTED_NUMSEGS / NUMSEGS_PER_P2 * (numsegs / FITTED_NUMSEGS) ** NUMSEGS_GROWTH)
 
 
 def keeps_numsegs(line, water_density):
@@ -72,7 +82,8 @@ def moordyn_mesh(lines, water_density):
                        + (" Hermite" if new.element == "hermite" else " P1, a buoyant segment" if new.order == 1 else "")
                        for line, new in zip(lines, meshed))
     note = (f"mesh: NumSegs read as an accuracy, MoorDyn's lumped-mass error at NumSegs segments; P2 elements, "
-            f"NumSegs / {NUMSEGS_PER_P2} rounded up, reach it ({counts}); [moordyn] order or elements in a "
+            f"NumSegs / {NUMSEGS_PER_P2} rounded up (above NumSegs {FITTED_NUMSEGS} more, as the statics error's fits ask), "
+            f"reach it ({counts}); [moordyn] order or elements in a "
             "TOML that wraps the file set the mesh")
     return meshed, note
 
