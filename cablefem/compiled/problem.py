@@ -177,12 +177,10 @@ class Packer:
             return self.problems[0]
         return Group(self.settings, strings_list(self.problems), self.junctions, *self.scratch)
 
-    def finish(self, prob):
+    def finish(self):
+        """Hand each string's results back from the Problems ``pack`` made (``_String.finish``)."""
         for string, each in zip(self.strings, self.problems):
             string.finish(each)
-
-    def _first(self, prob):
-        return self.problems[0]
 
     def run(self, times, forces):
         """Steps of the strings to ``times`` (m,) as ``policy.steps`` takes them, their forces into
@@ -190,8 +188,8 @@ class Packer:
         times = np.asarray(times, dtype=float)
         prob = self.pack(self.ends(times))
         status, k = self.functions["steps"](prob, times, forces)
-        self.finish(prob)
-        return status, k, float(self._first(prob).clock[0]["stopped"])
+        self.finish()
+        return status, k, float(self.problems[0].clock[0]["stopped"])
 
     def attempt(self, h):
         """One attempt of size h of the strings (``policy.attempt``), their ends at t + h; its outcome
@@ -204,5 +202,5 @@ class Packer:
         for each in self.problems:
             each.target[:] = each.ends[0]
         outcome = self.functions["attempt"](prob, t1 - t)
-        self.finish(prob)
+        self.finish()
         return outcome

@@ -104,7 +104,7 @@ class SeabedContact:
         if damped:
             c = self.damping * engaged
             # v_n = v . n(r): d v_n/dr = v . dn/dr; s = -d_G / delta inside the ramp
-            inside = closing & (gap < 0.0) & (-gap < self.ramp)
+            inside = closing & (-gap < self.ramp)  # closing: in the seabed
             slope = np.where(inside, self.damping * vn / np.where(inside, self.ramp, 1.0), 0.0)
             dpressure_dr = dpressure_dr - c * np.einsum("aeq,abeq->beq", state.v, dn) + slope * grad_gap
             dpressure_dv = -c * n

@@ -105,7 +105,7 @@ def forcing_periods(motion, sea=None):
         if amplitude.size:  # a sea of no components carries a current alone
             strong = (amplitude >= WAVE_AMPLITUDE_SHARE * amplitude.max()) & (omega > 0.0)
             periods += [2.0 * math.pi / w for w in omega[strong]]
-        current = getattr(sea, "current", None)
+        current = sea.current
         if current is not None and current.velocity.shape[3] > 1 and current.dt > 0.0:
             periods.append(2.0 * current.dt)  # the shortest period its record resolves
         if sea.ramp > 0.0:
