@@ -77,6 +77,24 @@ def test_a_mass_on_a_free_end_hangs_below_its_fixed_point(tmp_path, capsys):
     np.testing.assert_allclose(entry["nodes"][-1][:2], [0.0, 0.0], atol=1e-6)
 
 
+@pytest.mark.parametrize("numsegs", [19, 76])
+def test_a_beam_clamped_to_a_fixed_rod_is_a_cantilever_at_any_mesh(tmp_path, capsys, numsegs):
+    """beam/BeamCantilevered.txt: a 10 m beam (EI 1e7 N m^2, 100 kg/m, in the air) clamped to a fixed
+    rod's axis, its other end on a massless free point: the tip drops w L^4 / (8 EI) and the clamp
+    holds w L^2 / 2, short by the large deflection's own (tip / L)^2 = 1.5e-4, at NumSegs 19 and at 76
+    (from the hang, 38 and 76 Hermite elements folded the beam back at its clamp or did not converge:
+    the start is now straight along the clamp)."""
+    text = open(data("beam/BeamCantilevered.txt")).read().replace("10        19      -", f"10        {numsegs}      -")
+    path = tmp_path / "BeamCantilevered.txt"
+    path.write_text(text)
+    (entry,) = static_json(path, tmp_path, capsys)["lines"]
+    w, L, EI = 100.0 * 9.80665, 10.0, 1e7
+    tip = np.array(entry["nodes"][-1])
+    assert abs((10.0 - tip[2]) / (w * L**4 / (8.0 * EI)) - 1.0) < 2e-4  # -1.2e-4 at both meshes
+    assert abs(entry["bending_moment"][0] / (w * L**2 / 2.0) - 1.0) < 1e-4  # -6.0e-5
+    assert tip[0] > 9.99  # the beam stands out from its clamp, not folded back
+
+
 def test_a_riser_between_two_fixed_points_in_a_current_profile(tmp_path, capsys):
     """viv/viv.txt: a line between two Fixed points (no fairlead at all), Currents 1 with its
     current_profile.txt (0.2 m/s from -11 m to the surface, 50 rows on one straight line, kept as 2),

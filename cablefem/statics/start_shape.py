@@ -20,7 +20,11 @@ to the inverse catenary (desire2023 Fig. 5). Three shapes, by what the line is:
   the catenary of the weight's magnitude mirrored in z.
 - **A line with one free end** that hangs from its held end (``cablefem.statics.hang``): straight
   down, each piece stretched by what hangs below it, onto the seabed where it reaches it; the free
-  end where the hang puts it, not where the scene gives it.
+  end where the hang puts it, not where the scene gives it. A stiff cantilever, a bending line
+  clamped at its held end whose load bends it little (``CANTILEVER``), starts straight along its
+  clamp instead: its unloaded shape, from which Newton bends it in a few iterations, where from the
+  hang it would have to swing the beam up through its clamp (MoorDyn's BeamCantilevered.txt at 38
+  Hermite elements converged from the hang to a beam folded back at its clamp).
 
 ``initial_shape`` also says whether it laid out slack line: statics then skips the compressive
 start (``cablefem.statics.newton``), which would push slack elements straight.
@@ -33,7 +37,7 @@ import numpy as np
 from cablefem.fem import clamp
 from cablefem.statics.catenary import elastic_catenary, inclined_catenary
 from cablefem.geometry import Plane
-from cablefem.statics.hang import free_end, free_hang
+from cablefem.statics.hang import free_end, free_hang, hanging_tension
 from cablefem.model.line import Line
 from cablefem.loads.gravity import submerged_fraction
 
@@ -43,6 +47,10 @@ LOOP_FRACTION = 0.1
 #: a mean submerged weight below this fraction of the dry weight counts as neutral: the straight
 #: chord is the start
 NEUTRAL = 1e-9
+#: a clamped bending line with one free end starts straight along its clamp when T L^2 / (3 EI) is
+#: below this (T: the weight and points hanging from the clamp, EI the least along the line): the
+#: small-deflection slope at the free end of a cantilever carrying T at its tip, in radians
+CANTILEVER = 1.0
 
 
 def mean_weight(line, environment):
@@ -81,10 +89,40 @@ def _hang(system):
     it floats at would bend it through a right angle at the start."""
     level = float_level(system.weight)
     line = system.line
+    straight = _cantilever(system)
+    if straight is not None:
+        return straight
     if np.isfinite(level) and any(seg.type.EI > 0.0 for seg in line.segments):
         held = line.anchor if free_end(line) == 1 else line.fairlead
         level = max(level, float(held[2]) + 2.0 * line.unstretched_length)
     return free_hang(line, system.seabed, system.environment, level)
+
+
+def _cantilever(system):
+    """Positions (a function of arc length) of a stiff cantilever's start straight along its clamp
+    (``CANTILEVER``), or None: a line that does not bend, has no free end, or is not clamped at its
+    held end."""
+    line = system.line
+    free = free_end(line)
+    if free is None or line.tangents[1 - free] is None:
+        return None
+    EI = min(seg.type.EI for seg in line.segments)
+    if EI <= 0.0:
+        return None
+    _, below = hanging_tension(line, system.environment)
+    length = line.unstretched_length
+    if abs(below[0]) * length ** 2 / (3.0 * EI) >= CANTILEVER:
+        return None
+    direction = np.asarray(line.tangents[1 - free], dtype=float)
+    direction = direction / np.linalg.norm(direction)
+    held = line.anchor if free == 1 else line.fairlead
+    along = 1.0 if free == 1 else -1.0  # r' points from the anchor to the fairlead
+
+    def positions(s):
+        u = np.asarray(s, dtype=float) if free == 1 else length - np.asarray(s, dtype=float)
+        return held[None, :] + along * u[:, None] * direction[None, :]
+
+    return positions
 
 
 def _shape(system, weight, EA):
