@@ -1,6 +1,9 @@
-"""MoorDyn's own beam input, ``BeamSimplySupported.txt`` (MoorDyn's tests/Mooring, copied unchanged in
-tests/data/moordyn/beam/), in both codes: a 10 m beam of EI = 1e7 N m², EA = 1.5e9 N, 100 kg/m between
-two Fixed points 10 m above the still water (in the air), sagging under its own weight.
+"""MoorDyn's own beam inputs (MoorDyn's tests/Mooring, copied unchanged in tests/data/moordyn/beam/), in
+both codes: ``BeamSimplySupported.txt``, a 10 m beam of EI = 1e7 N m², EA = 1.5e9 N, 100 kg/m between
+two Fixed points 10 m above the still water (in the air), sagging under its own weight; and
+``BeamCantilevered.txt``, the same beam from the end of a Fixed Rod, clamped to the rod's axis, its
+other end on a massless free point: a cantilever under its own weight, tip w L^4 / (8 EI) (Timoshenko
+& Gere 1961), the clamp's moment w L^2 / 2.
 
 Closed forms: Euler-Bernoulli's simply supported beam, midspan 5 w L^4 / (384 EI) (MoorDyn's test
 asserts its nodes within 50 % of w x (L^3 - 2 L x^2 + x^3) / (24 EI)); and, since both ends are fixed
@@ -18,6 +21,7 @@ from scipy.optimize import brentq
 
 ROOT = Path(__file__).resolve().parents[2]
 FILE = ROOT / "tests" / "data" / "moordyn" / "beam" / "BeamSimplySupported.txt"
+CANTILEVER = FILE.with_name("BeamCantilevered.txt")
 L, EI, EA, MASS, HEIGHT = 10.0, 1e7, 1.5e9, 100.0, 10.0
 GRAVITY = 9.80665  # MoorDyn's
 
@@ -100,4 +104,51 @@ def compare():
                    error_to_stretched=float(np.max(np.abs(run["deflection"] - reference)) / out["stretched_midspan"]))
         run["x"], run["deflection"] = run["x"].tolist(), run["deflection"].tolist()
         out[name] = run
+    return out
+
+
+def cablefem_cantilever():
+    """cablefem's static solve of ``BeamCantilevered.txt``: the tip's drop [m], the clamp's moment
+    [N m] (its reaction, ``fem.clamp``), Newton's iterations and the wall time [s]."""
+    from cablefem.io import load_scene
+    from cablefem.fem.system import build_system
+    from cablefem.statics.solve import solve_static
+    from cablefem.runs.results import report
+
+    scene = load_scene(CANTILEVER)
+    system = build_system(scene, scene.lines[0], dynamic=False)
+    begin = time.perf_counter()
+    result = solve_static(system)
+    wall = time.perf_counter() - begin
+    rep = report(system, result.X)
+    return {"elements": scene.lines[0].segments[0].elements, "tip_drop": float(HEIGHT - rep.nodes[-1, 2]),
+            "clamp_moment": float(rep.bending_moment[0]), "iterations": result.iterations, "wall_time_s": wall}
+
+
+def moordyn_cantilever():
+    """MoorDyn-C's initial condition of ``BeamCantilevered.txt`` (relaxed for its TmaxIC 40 s): the
+    tip's drop [m] (its free point) and the wall time [s]."""
+    import shutil
+    import tempfile
+
+    from validation.cables.moordyn_side import initialised
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / CANTILEVER.name
+        shutil.copy(CANTILEVER, path)
+        with initialised(path) as (moordyn, system, wall):
+            tip = np.array(moordyn.GetPointPos(moordyn.GetPoint(system, 1)))
+            line = moordyn.GetLine(system, 1)
+            segments = moordyn.GetLineNumberNodes(line) - 1
+    return {"segments": segments, "tip_drop": float(HEIGHT - tip[2]), "wall_time_s": wall}
+
+
+def compare_cantilever():
+    """Both codes' tip drop against w L^4 / (8 EI), and cablefem's clamp moment against w L^2 / 2."""
+    w = MASS * GRAVITY
+    out = {"euler_bernoulli_tip": w * L**4 / (8.0 * EI), "clamp_moment_exact": w * L**2 / 2.0}
+    for name, run in (("cablefem", cablefem_cantilever()), ("moordyn", moordyn_cantilever())):
+        run["tip_error"] = run["tip_drop"] / out["euler_bernoulli_tip"] - 1.0
+        out[name] = run
+    out["cablefem"]["clamp_moment_error"] = out["cablefem"]["clamp_moment"] / out["clamp_moment_exact"] - 1.0
     return out

@@ -37,3 +37,11 @@ def print_tables(results):
         print(f"  {name:14s} {mesh:4d}: largest deflection {r['largest']:.6g} m = {r['ratio_to_euler_bernoulli']:.4f} x "
               f"Euler-Bernoulli; from the stretched beam {r['error_to_stretched']:.2e} of its midspan, "
               f"{r['wall_time_s']:.2f} s")
+    c = results["cantilever"]
+    print(f"\nMoorDyn's BeamCantilevered.txt: tip w L^4 / (8 EI) = {c['euler_bernoulli_tip']:.6g} m, clamp moment "
+          f"w L^2 / 2 = {c['clamp_moment_exact']:.6g} N m")
+    for name in ("cablefem", "moordyn"):
+        r = c[name]
+        mesh = r.get("elements", r.get("segments"))
+        extra = f", clamp moment {r['clamp_moment_error']:+.2e}" if "clamp_moment_error" in r else ""
+        print(f"  {name:14s} {mesh:4d}: tip drop {r['tip_drop']:.6g} m ({r['tip_error']:+.2e}){extra}, {r['wall_time_s']:.2f} s")
