@@ -270,3 +270,35 @@ every = 3.0
     np.testing.assert_allclose(reference, np.broadcast_to(body_reference(scene.bodies["platform"], 3.0), reference.shape),
                                atol=1e-9)
     assert len(reference) == 2  # to its two points
+
+
+class _Crawl:
+    """A scalar problem r(x) = x whose Newton step is cut to a ``fraction`` of the way: Newton crawls
+    when ``fraction`` is small (what network statics meets far from a free body's equilibrium)."""
+
+    def __init__(self, fraction):
+        self.fraction = fraction
+
+    def evaluate(self, x):
+        return np.array([x]), np.array([[1.0]]), abs(x)
+
+    def solve(self, J, r):
+        return -self.fraction * r
+
+    def trial(self, x, step, lam):
+        return x + lam * step[0]
+
+    def small(self, step):
+        return abs(step[0]) < 1e-14
+
+
+@pytest.mark.parametrize("fraction, converged", [(0.5, True), (0.05, False)])
+def test_halving_gives_up_on_newton_that_crawls(fraction, converged):
+    from cablefem.statics.newton import Halving, iterate
+
+    x, iterations, norm, history, ok = iterate(_Crawl(fraction), 1.0, 1e-8, 200, Halving())
+    assert ok == converged
+    if converged:  # halving the residual at each step: 27 steps to 1e-8
+        assert norm <= 1e-8 and iterations == 27
+    else:  # 5 % a step: 8 steps leave 0.66 of the residual, so the ninth gives up
+        assert len(history) == Halving.WINDOW + 1 and norm > 0.5

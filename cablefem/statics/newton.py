@@ -209,14 +209,24 @@ class PseudoTransient:
 class Halving:
     """Newton's step halved until the residual passes Armijo's test or the step is small (at most
     ``TRIES`` trials); a trial point that cannot be evaluated (``ConvergenceError``) is halved too. A
-    full step that is small has converged."""
+    full step that is small has converged. It gives up (``search`` None) when the residual has not
+    halved over the last ``WINDOW`` steps: Newton crawling with cut steps far from the answer, where a
+    globalisation that follows the physics does better (network statics' pseudo-transient:
+    complex_system.txt's network crawled from 6 to 1.3 in 47 halved steps)."""
 
     TRIES = 12
+    WINDOW = 8
+
+    def __init__(self):
+        self.norms = []  # the residual at each step's start
 
     def direction(self, problem, tangent, residual):
         return problem.solve(tangent, residual)
 
     def search(self, problem, point, residual, norm, step):
+        self.norms.append(norm)
+        if len(self.norms) > self.WINDOW and norm > 0.5 * self.norms[-1 - self.WINDOW]:
+            return None
         lam = 1.0
         for _ in range(self.TRIES):
             try:
