@@ -107,15 +107,11 @@ def rod_end_local(rod, end):
 
 
 def check_rods_in_run(scene):
-    """InputError if ``scene`` has free or pinned rods, or rods on a free body, whose dynamics are
-    not solved yet (their statics are: ``cablefem static``)."""
+    """InputError if ``scene`` has a pinned rod, whose dynamics are not solved yet (its statics are:
+    ``cablefem static``). Free rods and free bodies carrying rods step in a run
+    (``cablefem.loads.rod_body``)."""
     for name, body in sorted(scene.bodies.items()):
-        if body.rod is not None:
-            kind = "pinned" if body.rod.pinned else "free"
-            raise InputError(f"rod '{name}' ({kind}): the dynamics of a free or pinned rod are not solved yet "
-                             "(`cablefem static` solves its equilibrium); for a run, make the rod fixed or coupled",
-                             key="RODS")
-        if body.rods and body.kind == "free":
-            raise InputError(f"body '{name}' (free) carries rods ({', '.join(r.name for r in body.rods)}): the "
-                             "dynamics of a free body with rods are not solved yet (`cablefem static` solves its "
-                             "equilibrium); for a run, make the body coupled or fixed", key="RODS")
+        if body.rod is not None and body.rod.pinned:
+            raise InputError(f"rod '{name}' (pinned): the dynamics of a pinned rod are not solved yet "
+                             "(`cablefem static` solves its equilibrium); for a run, make the rod fixed, coupled "
+                             "or free", key="RODS")
