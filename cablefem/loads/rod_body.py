@@ -19,12 +19,15 @@ rigid cylinder, Goldstein, Classical Mechanics, Sec. 5.5; the added mass on each
 acceleration, Morison's). MoorDyn-C's rod leaves f_v out (``Rod::doRHS`` sums M a over its nodes
 with the 6 x 6 mass matrix and no centripetal terms); it vanishes for a rod that does not turn.
 
-A rod pinned to a free body hands the body the force at its pin and no moment, at the angle the file
-gives it on the body, as network statics has it (``cablefem.statics.rods.carried_terms``), so a run
-starts at rest where statics put it.
+A pinned rod is a free rod with a ``Pin`` at end A: a spring so stiff that the pin gives by 1e-6 of
+the rod's length under a force of the rod's weight (a penalty, where statics replaces the force rows,
+``cablefem.statics.rods.pin``), so that the rod turns about its pin and a run starts within that of
+where statics put it. A rod pinned to a free body hands the body the force at its pin and no moment, at
+the angle the file gives it on the body, as network statics has it
+(``cablefem.statics.rods.carried_terms``).
 
 ``Loads`` sums parts: a free body's ``BodyLoads`` and its rods, each part's rows and mass matrix
-added, one mechanism for a free rod (one part) and a body carrying rods.
+added, one mechanism for a free rod (one part), a pinned rod (and its pin) and a body carrying rods.
 """
 
 import numpy as np
@@ -98,6 +101,41 @@ class RodPart:
         return kinetic + rod.mass * self.g * 0.5 * (a[2] + b[2]) + buoyancy
 
 
+class Pin:
+    """End A of a pinned rod held at ``position`` (3,) [m], the frame's reference point: a spring of
+    ``stiffness`` [N/m] between them (``pin_stiffness``); its force acts at the reference point, no
+    moment."""
+
+    weight = 0.0
+
+    def __init__(self, position, stiffness):
+        self.position, self.stiffness = np.asarray(position, dtype=float), float(stiffness)
+        self.frame = np.eye(3)
+
+    def residual(self, X, V, A):
+        """The pin's rows (6,): minus its pull k (p - r) on the reference point r."""
+        return np.concatenate([self.stiffness * (X[0] - self.position), np.zeros(3)])
+
+    def mass_matrix(self, X):
+        """No mass (6, 6)."""
+        return np.zeros((6, 6))
+
+    def energy(self, X, V):
+        """The spring's energy [J]."""
+        gap = X[0] - self.position
+        return 0.5 * self.stiffness * gap @ gap
+
+
+#: how far [rod lengths] a pin gives under the rod's weight: stiffer, and the spring's round-off
+#: k eps |r| (|r| the pin's distance from the origin) nears Newton's tolerance, 1e-8 of the weight
+PIN_GIVE = 1e-6
+
+
+def pin_stiffness(rod, gravity):
+    """k [N/m]: the rod's weight (or 1 N) over ``PIN_GIVE`` of its length."""
+    return max(rod.mass * gravity, 1.0) / (PIN_GIVE * rod.length)
+
+
 class Loads:
     """The sum of ``parts`` (each with ``residual``, ``mass_matrix``, ``energy``, ``weight`` and
     ``frame``): the own loads of one rigid body made of them."""
@@ -136,7 +174,10 @@ def body_loads(body, environment):
     (``BodyLoads``) alone, a free or pinned rod's (``body.rod``), or the body's with the rods it
     carries (``body.rods``)."""
     if body.rod is not None:
-        return Loads([RodPart(body.rod, rod_end_local(body.rod, "A"), rod_end_local(body.rod, "B"), environment)])
+        rod = RodPart(body.rod, rod_end_local(body.rod, "A"), rod_end_local(body.rod, "B"), environment)
+        if not body.rod.pinned:
+            return Loads([rod])
+        return Loads([rod, Pin(body.position, pin_stiffness(body.rod, environment.gravity))])
     if not body.rods:
         return BodyLoads(body, environment)
     return Loads([BodyLoads(body, environment)] + [RodPart(rod, rod.end_a, rod.end_b, environment, rod.pinned)

@@ -13,7 +13,9 @@ A rod is a rigid body, and it enters the network as one (``cablefem.model.networ
 - a *free* rod is a free ``Body`` whose frame has the rod's axis as its z axis, end A at its
   reference point and end B at (0, 0, L), with the rod's mass and inertia (``rod_body``): the same
   coupling unknown as any free body, with the rod's own loads in place of a body's (``Body.rod``);
-  a *pinned* rod is that body with end A held where the file puts it (``Rod.pinned``);
+  a *pinned* rod is that body with end A held where the file puts it (``Rod.pinned``). In a run a
+  free or pinned rod's own loads, and those of the rods a free body carries, are
+  ``cablefem.loads.rod_body``'s;
 - a rod of zero length (MoorDyn's NumSegs 0) has no mass and no volume (Rod.cpp): a point.
 
 Rotations are ``cablefem.model.network``'s: R = Rx(roll) Ry(pitch) Rz(yaw).
@@ -104,14 +106,3 @@ def rod_body(rod, Body):
 def rod_end_local(rod, end):
     """Where end 'A' or 'B' of a free or pinned ``rod`` sits in its body's frame [m]."""
     return np.zeros(3) if end == "A" else np.array([0.0, 0.0, rod.length])
-
-
-def check_rods_in_run(scene):
-    """InputError if ``scene`` has a pinned rod, whose dynamics are not solved yet (its statics are:
-    ``cablefem static``). Free rods and free bodies carrying rods step in a run
-    (``cablefem.loads.rod_body``)."""
-    for name, body in sorted(scene.bodies.items()):
-        if body.rod is not None and body.rod.pinned:
-            raise InputError(f"rod '{name}' (pinned): the dynamics of a pinned rod are not solved yet "
-                             "(`cablefem static` solves its equilibrium); for a run, make the rod fixed, coupled "
-                             "or free", key="RODS")
