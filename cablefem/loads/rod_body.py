@@ -26,6 +26,10 @@ where statics put it. A rod pinned to a free body hands the body the force at it
 the angle the file gives it on the body, as network statics has it
 (``cablefem.statics.rods.carried_terms``).
 
+Left out, as in ``cablefem.loads.rod``: a rod's seabed contact and the waterplane's moments of area;
+a rod feels the current (a depth profile's at the middle of its submerged part), not the waves, as a
+free body does.
+
 ``Loads`` sums parts: a free body's ``BodyLoads`` and its rods, each part's rows and mass matrix
 added, one mechanism for a free rod (one part), a pinned rod (and its pin) and a body carrying rods.
 """
