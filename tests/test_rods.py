@@ -10,11 +10,9 @@ import numpy as np
 import pytest
 
 from cablefem.cli import main
-from cablefem.errors import InputError
 from cablefem.io import load_scene
 from cablefem.loads.rod import drag, mass_matrix, static_loads
 from cablefem.model.rod import Rod, RodType
-from cablefem.statics.scene import run_start
 
 RHO, G = 1025.0, 9.80665
 HERE = os.path.dirname(__file__)
@@ -109,11 +107,9 @@ def test_a_free_rod_piercing_the_surface_takes_the_tilt_and_tensions_of_its_clos
     np.testing.assert_allclose(solved["points"]["rod1B"]["position"], B_, atol=1e-6 * L)
 
 
-def test_a_pinned_rod_turns_about_its_pin_to_its_closed_form(tmp_path, capsys):
-    """A buoyant rod pinned at A = (0, 0, -15), held at B by a vertical line to an anchor 8 m away:
-    the line is vertical at B, so B = A + L (cos a, 0, sin a) with cos a = 8/10; submerged, its
-    buoyancy and weight act at L/2 and the moment about the pin gives T = (B - W)/2 whatever the
-    angle. The file starts it turned by 5 degrees. Tolerance 1e-6 relative: the solver's."""
+def pinned_rod_file(tmp_path):
+    """A buoyant rod pinned at A = (0, 0, -15), held at B by a vertical line to an anchor 8 m away,
+    turned 5 degrees from where it rests: (file, the line's tension T [N], A, B at rest)."""
     d, m, L = 0.5, 50.0, 10.0
     A = np.array([0.0, 0.0, -15.0])
     B_ = A + [8.0, 0.0, 6.0]
@@ -124,6 +120,16 @@ def test_a_pinned_rod_turns_about_its_pin_to_its_closed_form(tmp_path, capsys):
     path = moordyn_file(
         tmp_path, f"float {d} {m} 1.0 1.0 0.5 0.5", "1 float Pinned 0 0 -15 " + " ".join(f"{x:.6f}" for x in start_b)
         + " 4 -", "1 Fixed 8 0 -20 0 0 0 0", f"1 rope 1 R1B {unstretched(T, 11.0, -wet)!r} 20 -")
+    return path, T, A, B_
+
+
+def test_a_pinned_rod_turns_about_its_pin_to_its_closed_form(tmp_path, capsys):
+    """A buoyant rod pinned at A = (0, 0, -15), held at B by a vertical line to an anchor 8 m away:
+    the line is vertical at B, so B = A + L (cos a, 0, sin a) with cos a = 8/10; submerged, its
+    buoyancy and weight act at L/2 and the moment about the pin gives T = (B - W)/2 whatever the
+    angle. The file starts it turned by 5 degrees. Tolerance 1e-6 relative: the solver's."""
+    L = 10.0
+    path, T, A, B_ = pinned_rod_file(tmp_path)
     solved = static_json(path, tmp_path, capsys)
     np.testing.assert_allclose(solved["lines"][0]["fairlead_tension"], T, rtol=1e-6)
     np.testing.assert_allclose(solved["points"]["rod1B"]["position"], B_, atol=1e-6 * L)
@@ -246,12 +252,26 @@ def test_a_rods_buoyancy_is_archimedes_in_and_partly_out_of_the_water():
     np.testing.assert_allclose(moment, np.cross((deep.end_b - deep.end_a) / 2.0, force), rtol=1e-12)
 
 
-def test_a_free_rod_in_a_run_is_refused_with_one_line(tmp_path):
-    """A free or pinned rod's statics solve; a run refuses it until free bodies step in time."""
-    path = moordyn_file(tmp_path, "float 0.5 50 1 1 0.5 0.5", "1 float Free 0 0 -10 0 0 -5 4 -",
-                        "1 Fixed 0 0 -20 0 0 0 0", "1 rope 1 R1A 10 20 -")
-    with pytest.raises(InputError, match="rod 'rod1' \\(free\\): the dynamics of a free or pinned rod"):
-        run_start(load_scene(path))
+def test_a_pinned_rod_s_run_from_its_statics_holds_still(tmp_path):
+    """The pinned rod above run for 2 s from its statics: its pin is a stiff spring (``Pin``), so end
+    A rises by the pin's reaction B - W - T over its stiffness (1.5e-5 m) and stays there (1e-7 m:
+    tensions.csv's 10 digits), and the line's tension stays within 2e-4 of its static value (8e-5
+    measured: the pin's give at the first step, which statics does not have, rings the line, whose
+    EA / l times it is 14 N)."""
+    from cablefem.loads.rod_body import pin_stiffness
+    from cablefem.runs.run import run_scene
+
+    path, T, A, B_ = pinned_rod_file(tmp_path)
+    scene = load_scene(path)
+    rod = scene.bodies["rod1"].rod
+    give = (RHO * G * rod.area * rod.length - rod.mass * G - T) / pin_stiffness(rod, G)
+    summary = run_scene(scene, tmp_path / "run", duration=2.0, dt=0.05)
+    assert summary["completed"]
+    table = np.genfromtxt(tmp_path / "run" / "tensions.csv", delimiter=",", names=True)
+    for k, axis in enumerate("xyz"):
+        assert np.max(np.abs(table[f"bodyrod1{axis}"][1:] - A[k] - (give if axis == "z" else 0.0))) < 1e-7
+    force = np.stack([table[f"pointrod1Bf{axis}"] for axis in "xyz"], axis=1)
+    assert np.max(np.abs(np.linalg.norm(force, axis=1) - T)) < 2e-4 * T
 
 
 @pytest.mark.parametrize("rod, line, key, reason", [

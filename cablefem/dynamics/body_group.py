@@ -31,7 +31,7 @@ import numpy as np
 from cablefem.dynamics import policy, python_ops
 from cablefem.dynamics.group import Group
 from cablefem.dynamics.rigid_body import RigidBody
-from cablefem.loads.body import BodyLoads
+from cablefem.loads.rod_body import body_loads
 from cablefem.model.network import coupling, junction_ends
 from cablefem.statics.network import _cross
 
@@ -338,7 +338,7 @@ def body_groups(scene, integrators, poses):
     members = sorted({k for pairs in ends.values() for k, _ in pairs} | {k for each in links.values() for k, _, _ in each})
     index = {k: i for i, k in enumerate(members)}
     first = integrators[members[0]]
-    bodies = [RigidBody(name, BodyLoads(scene.bodies[name], scene.environment), poses[name], first.scheme,
+    bodies = [RigidBody(name, body_loads(scene.bodies[name], scene.environment), poses[name], first.scheme,
                         first.parameters, [(index[k], end, local) for k, end, local in links[name]], t0=first.t)
               for name in free]
     return [BodyGroup([integrators[k] for k in members],

@@ -99,9 +99,9 @@ def read_rods(type_rows, rod_rows, bodies, notes):
                          "have no motion), free to turn")
         rods[rid] = (number, kind, body, rod, zero)
     if rods:
-        notes.append("RODS: a free or pinned rod's weight and buoyancy (with partial submergence) are in statics; "
-                     "a run steps fixed and coupled rods and rods on fixed and coupled bodies, whose own loads "
-                     "move nothing (cablefem.loads.rod)")
+        notes.append("RODS: a rod's weight and buoyancy (with partial submergence) are in statics; a run steps "
+                     "free and pinned rods and rods on free bodies with their drag and added mass too "
+                     "(cablefem.loads.rod_body; a pinned rod's pin a stiff spring)")
     return rods
 
 

@@ -27,9 +27,22 @@ import numpy as np
 from cablefem.model.network import rotation_rates
 
 
-def _vex(skew):
+def vex(skew):
     """The vector a of a skew matrix [a]x."""
     return np.array([skew[2, 1] - skew[1, 2], skew[0, 2] - skew[2, 0], skew[1, 0] - skew[0, 1]]) * 0.5
+
+
+def linear_in_acceleration(residual, X):
+    """d(rows)/dA (6, 6) at pose X of ``residual(X, V, A)`` (6,), rows linear in A: its columns at
+    unit accelerations, at rest."""
+    zero = np.zeros((2, 3))
+    base = residual(X, zero, zero)
+    out = np.empty((6, 6))
+    for j in range(6):
+        A = np.zeros(6)
+        A[j] = 1.0
+        out[:, j] = residual(X, zero, A.reshape(2, 3)) - base
+    return out
 
 
 class BodyLoads:
@@ -55,8 +68,8 @@ class BodyLoads:
         """R, the angular velocity omega and acceleration alpha (3,) in the scene's frame, and the
         centre of gravity's acceleration (3,), at pose X, rates V, accelerations A (2, 3) each."""
         R, dR, ddR = (self.frame @ each for each in rotation_rates(X[1], V[1], A[1]))
-        omega = _vex(dR @ R.T)
-        alpha = _vex(ddR @ R.T + dR @ dR.T)
+        omega = vex(dR @ R.T)
+        alpha = vex(ddR @ R.T + dR @ dR.T)
         return R, omega, alpha, A[0] + ddR @ self.body.cg
 
     def residual(self, X, V, A):
@@ -83,14 +96,7 @@ class BodyLoads:
     def mass_matrix(self, X):
         """d(rows)/dA (6, 6) at pose X (the rows are linear in A): the rigid body's and the added mass
         in the unknowns' coordinates."""
-        zero = np.zeros((2, 3))
-        base = self.residual(X, zero, zero)
-        out = np.empty((6, 6))
-        for j in range(6):
-            A = np.zeros(6)
-            A[j] = 1.0
-            out[:, j] = self.residual(X, zero, A.reshape(2, 3)) - base
-        return out
+        return linear_in_acceleration(self.residual, X)
 
     def energy(self, X, V):
         """Kinetic and potential energy [J] at pose X and rates V (2, 3): translation of the centre

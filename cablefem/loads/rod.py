@@ -115,3 +115,28 @@ def mass_matrix(end_a, end_b, rod, water_density):
             block[:3, 3:] += -arm * mass @ skew(q)
             block[3:, :3] += arm * skew(q) @ mass
     return block
+
+
+def turning(end_a, end_b, omega, rod, water_density):
+    """The inertial force (3,) [N] and moment about end A (3,) [N m] of the rod turning at ``omega``
+    (3,) [rad/s], what ``mass_matrix`` leaves out: its mass and added mass (as ``mass_matrix`` has
+    them) times each point's centripetal acceleration omega x (omega x s q), and the gyroscopic
+    omega x I_r omega of its section's inertia I_r (Newton-Euler's; the added mass on each point's
+    acceleration across the rod and along it at its ends, Morison's as Rod.cpp has it)."""
+    a, b = np.asarray(end_a, dtype=float), np.asarray(end_b, dtype=float)
+    L = float(np.linalg.norm(b - a))
+    q = (b - a) / L
+    Q, I3 = np.outer(q, q), np.eye(3)
+    t, r = rod.type, 0.5 * rod.type.diameter
+    s0, s1 = submerged_interval(a[2], b[2])
+    m = rod.mass / L
+    added = water_density * t.Ca * rod.area
+    w = np.cross(omega, np.cross(omega, q))  # the centripetal acceleration at s = 1 m along the axis
+    across = w - (w @ q) * q
+    first = m * L ** 2 / 2.0 + added * L ** 2 * (s1 ** 2 - s0 ** 2) / 2.0  # int mu s ds; across: with the added mass
+    second = m * L ** 3 / 3.0 + added * L ** 3 * (s1 ** 3 - s0 ** 3) / 3.0
+    along = m * L ** 2 / 2.0 + (water_density * t.CaEnd * 2.0 / 3.0 * np.pi * r ** 3 * L if b[2] < 0.0 else 0.0)
+    force = first * across + along * (w @ q) * q
+    section = m * L * r * r * (0.5 * Q + 0.25 * (I3 - Q))
+    moment = second * np.cross(q, across) + np.cross(omega, section @ omega)
+    return force, moment

@@ -388,8 +388,8 @@ def point_position(point, bodies):
 def check_steppable(scene):
     """InputError for what a run cannot step: a clamp on a body that turns
     (``check_clamps_do_not_turn``). Junctions step in a ``cablefem.dynamics.group.Group`` and free
-    bodies in a ``cablefem.dynamics.body_group`` step, with any integrator; free and pinned rods are
-    refused by ``cablefem.model.rod.check_rods_in_run``."""
+    bodies (free and pinned rods and bodies carrying rods among them) in a
+    ``cablefem.dynamics.body_group`` step, with any integrator."""
     check_clamps_do_not_turn(scene)
 
 

@@ -13,7 +13,9 @@ A rod is a rigid body, and it enters the network as one (``cablefem.model.networ
 - a *free* rod is a free ``Body`` whose frame has the rod's axis as its z axis, end A at its
   reference point and end B at (0, 0, L), with the rod's mass and inertia (``rod_body``): the same
   coupling unknown as any free body, with the rod's own loads in place of a body's (``Body.rod``);
-  a *pinned* rod is that body with end A held where the file puts it (``Rod.pinned``);
+  a *pinned* rod is that body with end A held where the file puts it (``Rod.pinned``). In a run a
+  free or pinned rod's own loads, and those of the rods a free body carries, are
+  ``cablefem.loads.rod_body``'s;
 - a rod of zero length (MoorDyn's NumSegs 0) has no mass and no volume (Rod.cpp): a point.
 
 Rotations are ``cablefem.model.network``'s: R = Rx(roll) Ry(pitch) Rz(yaw).
@@ -104,18 +106,3 @@ def rod_body(rod, Body):
 def rod_end_local(rod, end):
     """Where end 'A' or 'B' of a free or pinned ``rod`` sits in its body's frame [m]."""
     return np.zeros(3) if end == "A" else np.array([0.0, 0.0, rod.length])
-
-
-def check_rods_in_run(scene):
-    """InputError if ``scene`` has free or pinned rods, or rods on a free body, whose dynamics are
-    not solved yet (their statics are: ``cablefem static``)."""
-    for name, body in sorted(scene.bodies.items()):
-        if body.rod is not None:
-            kind = "pinned" if body.rod.pinned else "free"
-            raise InputError(f"rod '{name}' ({kind}): the dynamics of a free or pinned rod are not solved yet "
-                             "(`cablefem static` solves its equilibrium); for a run, make the rod fixed or coupled",
-                             key="RODS")
-        if body.rods and body.kind == "free":
-            raise InputError(f"body '{name}' (free) carries rods ({', '.join(r.name for r in body.rods)}): the "
-                             "dynamics of a free body with rods are not solved yet (`cablefem static` solves its "
-                             "equilibrium); for a run, make the body coupled or fixed", key="RODS")

@@ -15,7 +15,6 @@ from dataclasses import replace
 
 from cablefem.fem.system import build_system
 from cablefem.model.network import anchor_path, boundary_path, check_steppable, coupling
-from cablefem.model.rod import check_rods_in_run
 
 
 #: ``cablefem static`` solves a single line of at most this many nodes on the numpy path: loading
@@ -123,7 +122,6 @@ def start_states(scene, t0=0.0, systems=None):
     (``static_lines``; a network's junctions solved with their strings): (states, Newton
     iterations). ``systems``: the lines' dynamic systems, whose FEM the static ones share and which
     start from the statics' history of the points."""
-    check_rods_in_run(scene)
     check_steppable(scene)
     statics, results, iterations, _ = static_lines(scene, t0, systems)
     if systems is not None:
@@ -154,7 +152,6 @@ def network_start(scene, t0=0.0):
     bodies), whose poses the free bodies start from."""
     from cablefem.model.network import dynamic_lines
 
-    check_rods_in_run(scene)
     check_steppable(scene)
     statics, results, iterations, network = static_lines(scene, t0)
     systems = []
