@@ -14,7 +14,7 @@ in; cablefem reads a path from the input file's folder, so give FOLDER a link ``
 Target (issue 33): lifting.txt <= 5 s, no input over 2 s unless it says why. Measured on MoorDyn
 v2.7.1's tests/Mooring (links ``Mooring -> .`` in it and in 3D_seafloor/; 2 shared cores under the
 load of three other jobs, load ~3.5, --repeats 3): cablefem reads 39 of its 42 files, and all 39
-converge. Four are over 2 s, all networks whose coupling unknowns Newton cannot reach from where the
+converge. Five are over 2 s, all networks whose coupling unknowns Newton cannot reach from where the
 file puts them, so that pseudo-transient continuation (``cablefem.statics.network_relax``) takes
 49-86 outer iterations, each re-solving every string to the tolerance:
 
