@@ -9,7 +9,7 @@ For MoorDyn-C the cable is three lines, each of one line type, joined through ze
 (MoorDyn's connector that passes the bending moment: it turns to balance the attached ends' moments,
 so that the tangent is continuous as in one line), the hang-off a Coupled Rod, vertical, whose end A
 the cable's top is clamped to. For cablefem the same file with those Rods made Free and Coupled
-POINTS (a free Rod does not run in cablefem) is read by cablefem's MoorDyn reader (the same
+POINTS (cablefem reads a zero-length Rod as a point, which passes no moment) is read by cablefem's MoorDyn reader (the same
 conversions as any MoorDyn file: Hermite elements, damping, drag, seabed); its free points are hinges
 where bending lines meet, so the three lines are welded into one line, C1 through the joints as the
 Rods make them, its top clamped along the Rod (``fairlead_tangent``).
@@ -49,7 +49,7 @@ def segments_for(length):
 def moordyn_text(segments, dtM, ic=None, rods=True):
     """The MoorDyn v2 input file (text) with ``segments`` (NumSegs per section), time step dtM [s] and
     ``ic`` (dict OPTIONS name -> value for the initial-condition solve); ``rods`` False: the joints
-    and the hang-off as Free and Coupled POINTS (for cablefem, which runs no free Rod)."""
+    and the hang-off as Free and Coupled POINTS (for cablefem, whose zero-length Rods are points)."""
     rows = ["--------------------- MoorDyn Input File ------------------------------------",
             "Lazy-wave dynamic power cable (cablefem validation/cables)",
             "----------------------- LINE TYPES ------------------------------------------",
