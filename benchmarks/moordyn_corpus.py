@@ -134,7 +134,7 @@ def relaxed_copy(path):
             except ValueError:
                 pass
     rows[end:end] = [f"{pick(own[name], value)!r} {name}" for name, (pick, value) in RELAXED.items()]
-    stem = f".{path.stem}-relaxed-{os.getpid()}"
+    stem = f".{path.stem}-relaxed-{os.getpid()}"  # the process that removes it
     copy = path.with_name(stem + ".mdin")
     copy.write_text("\n".join(rows) + "\n")
     try:
@@ -259,13 +259,17 @@ def compare(theirs, ours):
 
 
 def moordyn_child(path, timeout, relaxed=False):
-    """MoorDyn-C's ``moordyn_tensions`` of ``path`` (relaxed: of its ``relaxed_copy``) in a process of its
-    own (a file MoorDyn-C cannot read may abort it); None if it fails or takes over ``timeout`` [s]."""
+    """MoorDyn-C's ``moordyn_tensions`` of ``path`` (relaxed: of its ``relaxed_copy``, made and removed
+    here, so that a child killed at the timeout leaves nothing behind) in a process of its own (a file
+    MoorDyn-C cannot read may abort it); None if it fails or takes over ``timeout`` [s]."""
+    if relaxed:
+        with relaxed_copy(path) as copy:
+            return moordyn_child(copy, timeout)
     env = dict(os.environ, PYTHONBREAKPOINT="0")
-    command = [sys.executable, "-m", "benchmarks.moordyn_corpus", ".", "--moordyn-one", str(path)]
     try:
-        child = subprocess.run(command + (["--relaxed"] if relaxed else []), capture_output=True, text=True,
-                               timeout=timeout, env=env, cwd=Path(__file__).resolve().parents[1])
+        child = subprocess.run([sys.executable, "-m", "benchmarks.moordyn_corpus", ".", "--moordyn-one", str(path)],
+                               capture_output=True, text=True, timeout=timeout, env=env,
+                               cwd=Path(__file__).resolve().parents[1])
         theirs = json.loads(child.stderr.strip().splitlines()[-1]) if child.returncode == 0 else None
     except (subprocess.TimeoutExpired, ValueError, IndexError):
         return None
@@ -287,15 +291,9 @@ def main(argv=None):
     parser.add_argument("--only", nargs="*", default=(), help="files whose path contains one of these")
     parser.add_argument("--timeout", type=float, default=300.0, help="MoorDyn-C's seconds per file and reference")
     parser.add_argument("--moordyn-one", help=argparse.SUPPRESS)
-    parser.add_argument("--relaxed", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.moordyn_one:  # the child process: MoorDyn-C's tensions as JSON on the last line of stderr
-        path = os.path.abspath(args.moordyn_one)
-        if args.relaxed:
-            with relaxed_copy(path) as copy:
-                print(json.dumps(moordyn_tensions(str(copy))), file=sys.stderr)
-        else:
-            print(json.dumps(moordyn_tensions(path)), file=sys.stderr)
+        print(json.dumps(moordyn_tensions(os.path.abspath(args.moordyn_one))), file=sys.stderr)
         return 0
     folder = Path(args.folder)
     files = [p for p in input_files(folder) if not args.only or any(o in str(p) for o in args.only)]
