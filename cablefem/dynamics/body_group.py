@@ -61,6 +61,9 @@ class BodyGroup(Group):
         self.ends = [[] for _ in self.members]
         for k, pairs in enumerate(ends):
             fem = self.members[k].fem
+            linked = [end for end, _, _, _ in pairs]
+            if len(set(linked)) < len(linked):  # its end stiffness would be singular (``Group.columns``)
+                raise ValueError(f"string {k}'s ends {linked} are linked to more than one coupling unknown")
             for end, at, body, local in pairs:
                 dof = fem.end_dofs[end]
                 self.ends[k].append((end, int(np.searchsorted(fem.free_dofs, dof)), len(self.links), dof))
@@ -123,7 +126,7 @@ class BodyGroup(Group):
     def step(self, target, first=None):
         status = BODY["advance"](self, 0, float(target), float(first or 0.0))
         if status == policy.FAILED:
-            raise self.members[0].too_small(self.stopped)
+            raise self.too_small(self.stopped)
 
     # ------------------------------------------------------------------ the balance
     def balance(self):
@@ -247,12 +250,12 @@ def _size(g, steps):
 def _increment(g, refactor):
     steps = python_ops.member_steps(g, refactor)
     if steps is None:
-        return float("nan")
+        return python_ops.not_finite(g)
     if g.bodies and any(body.tangent is None for body in g.bodies):
         _evaluate_bodies(g, True)  # modified Newton keeps the strings' factors; a body's are cheap
     steps = g.condense(steps)
     if steps is None or not all(np.all(np.isfinite(step)) for step in steps):
-        return float("nan")
+        return python_ops.not_finite(g)
     for m, step in zip(g.members, steps):
         m.newton_step = step
     return _size(g, steps)
@@ -314,7 +317,7 @@ def _accept(g, h):
 
 #: the Python ops of a body group: the junctions' with the bodies added
 BODY_OPS = SimpleNamespace(**{name: getattr(python_ops, name) for name in dir(python_ops)
-                              if not name.startswith("_") and name not in ("np", "member_steps")})
+                              if not name.startswith("_") and name not in ("np", "member_steps", "not_finite")})
 BODY_OPS.__dict__.update(evaluate=_evaluate, finish=_finish, norm=_norm, increment=_increment, take_step=_take_step,
                          set_base=_set_base, restore_base=_restore_base, save_original=_save_original,
                          restore_original=_restore_original, begin=_begin, restart=_restart, accept=_accept)

@@ -43,6 +43,7 @@ class Group:
         self.junctions = dict(junctions or {})
         self.names = list(self.junctions)
         self.marched = None  # (key, forces) of the last ``march`` asked for by a member (``member_forces``)
+        self.singular = False  # the last Newton on the Python ops stopped at a step that was not finite
         first = self.members[0]
         self.scale = sum(m.scale for m in self.members)
         # each string's increments in the first one's increment tolerance (exactly 1 for the first)
@@ -106,7 +107,20 @@ class Group:
         size, when a longer one was seen to fail."""
         status = PYTHON["advance"](self, 0, float(target), float(first or 0.0))
         if status == policy.FAILED:
-            raise self.members[0].too_small(self.stopped)
+            raise self.too_small(self.stopped)
+
+    def too_small(self, h):
+        """The error of a step that failed down to ``min_dt``, the last attempt's size h [s]: the first
+        member's (``Integrator.too_small``), or, where that attempt's Newton stopped at a step that was
+        not finite (a singular tangent or coupling system; ``python_ops.increment``), that."""
+        m = self.members[0]
+        if not self.singular:
+            return m.too_small(h)
+        return ConvergenceError(
+            f"{m.name}: Newton's step is not finite at t = {m.t:.6g} s even with dt = {h:.3g} s: the tangent "
+            f"of {'the strings and their coupling unknowns' if self.junctions or len(self.members) > 1 else 'the line'} "
+            f"is singular (relative residual {m.last_residual:.3g} where it stopped)",
+            residual=m.last_residual, iterations=m.newton_iterations)
 
     def march(self, times):
         """Steps of every string to ``times`` (ascending) in turn, each as ``step`` takes it, in
@@ -129,7 +143,7 @@ class Group:
                     continue
             try:
                 if status == policy.FAILED:
-                    raise self.members[0].too_small(stopped)
+                    raise self.members[0].too_small(stopped)  # the compiled steps
                 self.step(times[k] - self.members[0].t, first=stopped)
             except ConvergenceError as error:
                 error.forces = forces[:k]  # the steps taken, for a caller writing them out

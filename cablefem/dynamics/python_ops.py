@@ -67,17 +67,24 @@ def member_steps(g, refactor):
 
 def increment(g, refactor):
     """Every string's Newton step into its ``newton_step`` (condensed onto the junctions); the largest
-    entry (``_size``), NaN when a tangent is singular or a step not finite."""
+    entry (``_size``), NaN when a tangent is singular or a step not finite (``Group.singular``)."""
     steps = member_steps(g, refactor)
     if steps is None:
-        return float("nan")
+        return not_finite(g)
     if g.junctions:
         steps = g.condense(steps)
         if steps is None or not all(np.all(np.isfinite(step)) for step in steps):
-            return float("nan")
+            return not_finite(g)
     for m, step in zip(g.members, steps):
         m.newton_step = step
     return _size(g, steps)
+
+
+def not_finite(g):
+    """NaN, the increment of a Newton that cannot go on, marked on the group for its error
+    (``Group.too_small``): a smaller step may still help, a singular system is no residual to report."""
+    g.singular = True
+    return float("nan")
 
 
 def factors_current(g):
@@ -166,6 +173,7 @@ def begin(g, h):
 
 
 def restart(g):
+    g.singular = False  # a Newton from the guess
     for m in g.members:
         m.X1 = m.guess.copy()
 

@@ -364,10 +364,12 @@ def _string(parts, points, bodies, at_point):
 
 def coupling(lines, points, bodies):
     """The coupling unknowns of strings ``lines``: the junction points (free points joining two or
-    more string ends: three or more, or two at a hinge; or one on a free body) and the free bodies,
-    as (points, bodies) name lists."""
+    more string ends: three or more, or two at a hinge) and the free bodies, as (points, bodies) name
+    lists. A point on a free body is no junction, however many string ends meet there: the body's
+    pose places it, and each of those ends is linked to the body alone."""
     junctions = sorted({name for line in lines for name, given in zip(line.ends, line.prescribed)
-                        if name is not None and not given and not _free_end(line, name, lines)})
+                        if name is not None and not given and points[name].body is None
+                        and not _free_end(line, name, lines)})
     free_bodies = sorted(name for name, body in bodies.items() if body.kind == "free")
     return junctions, free_bodies
 
