@@ -181,7 +181,8 @@ def test_junction_groups_step_with_every_scheme_and_adaptive_steps(tmp_path, int
     """A junction group is a problem the policy steps like a line (issue 31): generalised-alpha, and
     BDF2's adaptive steps, run the crowfoot; each solves the coupled equations at its last step
     (interior rows and the junction's balance below the tolerance's force), and its forces follow
-    BDF2's fixed-step run (the same motion: within 1 % of the largest force)."""
+    BDF2's fixed-step run (the same motion: within 1 % of the largest force; generalised-alpha's
+    alpha_f dt later, where it balances)."""
     from cablefem.runs.run import run_scene
 
     path = tmp_path / "crowfoot.toml"
@@ -198,10 +199,14 @@ def test_junction_groups_step_with_every_scheme_and_adaptive_steps(tmp_path, int
         rows = np.loadtxt(tmp_path / out / "tensions.csv", delimiter=",", skiprows=1)
         series.append(rows)
     ref, run = series
+    # generalised-alpha's forces are its balance at t_{n+1-alpha_f}, alpha_f = 1/3 at rho_inf 0.5: they
+    # follow BDF2's alpha_f dt earlier (0.35 %; at the same times 1.02 %, the force rising 137 kN/s)
+    lag = 0.05 / 3 if name == "generalized-alpha" else 0.0
     # compare at the reference's times (adaptive steps fall elsewhere: interpolate)
     for column in range(1, ref.shape[1]):
         values = np.interp(ref[:, 0], run[:, 0], run[:, column])
-        assert np.max(np.abs(values - ref[:, column])) <= 0.01 * np.abs(ref[:, 1:]).max()
+        expected = np.interp(ref[:, 0] - lag, ref[:, 0], ref[:, column])
+        assert np.max(np.abs(values - expected)) <= 0.01 * np.abs(ref[:, 1:]).max()
 
 
 def test_the_tripod_on_its_hinges_holds_still_with_either_integrator():

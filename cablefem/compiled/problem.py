@@ -104,8 +104,8 @@ class _String:
 
     def finish(self, prob):
         """Hand the run's results back to the integrator: counters, "auto"'s state, the seabed walk's
-        last call and, if a step was taken, the state (generalised-alpha's rows are those of the
-        balance at t_{n+1-alpha_f}: its reactions are evaluated again at the state)."""
+        last call and, if a step was taken, the state and the rows of the converged point, which
+        the reactions read (``Scheme.rows_at_state``)."""
         integ, counters, clock = self.integ, prob.counters, prob.clock[0]
         integ.full_steps_left = float(self.factors["auto_left"][0])
         integ.contraction = float(self.factors["contraction"][0])

@@ -280,8 +280,9 @@ def evaluate(p, tangent, held):
 def finish(p):
     """The rows at the converged point: BDF2's reactions need only the two end elements; a line whose
     loads keep history (its commits not empty) evaluates them all, so that the history committed is
-    the converged point's, as on the Python ops (``python_ops.finish``). Generalised-alpha's
-    reactions evaluate at the state (``reactions``): without history it evaluates nothing."""
+    the converged point's, as on the Python ops (``python_ops.finish``). A scheme whose reactions
+    evaluate at the state (``reactions``; ``Scheme.rows_at_state`` False) evaluates nothing here
+    without history."""
     keeps = p.commits[0][0].shape[0] > 0 or p.commits[1][0].shape[0] > 0
     if not keeps and not ROWS_AT_STATE:
         return 0
@@ -503,10 +504,11 @@ def set_proposal(p, value):
 def _forces(p, out):
     """The string's forces on its fairlead and anchor into ``out`` (2, 3): minus its rows there (less a
     point's load riding on the end, a free end's mass or a junction's clump:
-    ``kernels.subtract_node_loads``), which BDF2's ``finish`` left at the state; generalised-alpha's
-    balance holds at t_{n+1-alpha_f}, so its rows are evaluated at the state over the end elements
-    first, uncounted (as ``Integrator.reactions``). Returns the projection's status (0, or the
-    points the walk did not place)."""
+    ``kernels.subtract_node_loads``), which ``finish`` left at the converged point (BDF2: the state;
+    generalised-alpha: its balance at t_{n+1-alpha_f}); a scheme whose reactions evaluate at the
+    state (``Scheme.rows_at_state`` False) evaluates its rows there over the end elements first,
+    uncounted (as ``Integrator.reactions``). Returns the projection's status (0, or the points the
+    walk did not place)."""
     if not ROWS_AT_STATE:
         lost = _assemble_at(p, p.X, p.V, p.A, p.clock[0].t, policy.FLAG[0], policy.FLAG[0], p.end_elements,
                             p.rows)

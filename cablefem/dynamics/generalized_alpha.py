@@ -72,14 +72,19 @@ def error(scheme, clock, X, V, A, memory, X1, guess, out):
     return True
 
 
-SCHEME = Scheme("generalized-alpha", PARAMETERS, MEMORY, False, begin, point, accept, error)
+SCHEME = Scheme("generalized-alpha", PARAMETERS, MEMORY, True, begin, point, accept, error)
 
 
 class GeneralizedAlpha(Integrator):
     """Generalised-alpha (Chung & Hulbert 1993) with spectral radius ``rho_inf`` at infinite
     frequency: second order, unconditionally stable for linear problems, tunable high-frequency
-    damping. The end forces (``reactions``) are M A + G at the state at t_{n+1}, evaluated again
-    after the step (the balance holds at t_{n+1-alpha_f}).
+    damping. The end forces (``reactions``) are the rows M A + G where the scheme balances them, at
+    t_{n+1-alpha_f} (reported at t_{n+1}: a lag of alpha_f h). Not M A + G at the state X_{n+1}:
+    the loads balance at X_{n+1-alpha_f} = (1 - alpha_f) X_{n+1} + alpha_f X_n, and a strain is not
+    affine in the positions, so where a line turns by dtheta in a step the strain at X_{n+1} exceeds
+    the balanced one by alpha_f dtheta^2 / 2 (of e = u' + w'^2 / 2), a tension error of EA alpha_f
+    dtheta^2 / 2: second order in h, but EA / T times a balanced error (the lazy wave of
+    validation/cables, EA / T ~ 3e4: hang-off tension 4x too large at 40 steps a period).
 
     Unconditional stability does not carry over to the nonlinear, tension-only axial stiffness of a
     line (Kuhl & Crisfield 1999; Erlicher et al. 2002): on a stiff chain (EA 5e11 N) pulled taut with

@@ -111,6 +111,7 @@ class Integrator:
         self.memory = np.zeros((self.scheme.memory,) + self.X.shape)  # the scheme's rows of earlier steps
         self.group = None  # the ``Group`` that steps this line (a group of one, made on first use)
         self.last_h = None  # the last accepted step [s]
+        self.balance = None  # (t, X, V, A, t_eval) of the last step's converged point, where not the state
         self.last_residual = float("nan")  # the final relative residual of the last failed attempt
         self.residual_rows = None  # M A + G at the current state, (N, 3); compiled steps may fill only
         # the anchor and fairlead rows (the reactions), leaving the others zero
@@ -267,6 +268,9 @@ class Integrator:
     def accept(self, h):
         """The state at t + h from the converged ``X1`` (the scheme's ``accept``)."""
         self.prediction = self.guess
+        if self.system.clamps and self.scheme.rows_at_state and self.t_eval != self.t + h:
+            # a balance off the state (generalised-alpha): ``clamp_moments`` reads the clamps' rows there
+            self.balance = (self.t + h, *self.point(self.X1), self.t_eval)
         X, V, A, memory = self.X.copy(), self.V.copy(), self.A.copy(), self.memory.copy()
         self.scheme.accept(self.parameters, self.clock, X, V, A, memory, self.X1)
         self.X, self.V, self.A, self.memory = X, V, A, memory
@@ -382,8 +386,10 @@ class Integrator:
 
     def clamp_moments(self):
         """Moments (2, 3) [N m] the anchor's and the fairlead's clamp exert on the line at the current
-        state (``clamp.reaction_moments``; zero at an end that is not clamped). Compiled: from the rows
-        the last evaluation of the end elements kept, which an accepted step made at its state."""
+        state (``clamp.reaction_moments``; zero at an end that is not clamped), from the clamps' rows
+        where the scheme balances the loads, as the reactions (generalised-alpha: at t_{n+1-alpha_f}).
+        Compiled: the rows the last evaluation of the end elements kept, which an accepted step made
+        at its converged point; numpy: evaluated there (``accept`` keeps it where it is not the state)."""
         system = self.system
         if not system.clamps:
             return np.zeros((2, 3))
@@ -391,9 +397,11 @@ class Integrator:
             from cablefem.compiled.hermite import CLAMP_ROWS
 
             return clamp.reaction_moments(system, self.X, self.evaluator.points.clamp[:, CLAMP_ROWS:])
-        state = system.state(self.X, self.V, self.A, self.t)
-        rows = system.evaluate(state, jacobian=False, constrained=False)[0]
-        rows = rows + (mass_matrix(system, self.evaluator.lumped) @ self.A.ravel()).reshape(self.A.shape)
+        X, V, A, t = self.X, self.V, self.A, self.t
+        if self.balance is not None and self.balance[0] == self.t:
+            _, X, V, A, t = self.balance
+        rows = system.evaluate(system.state(X, V, A, t), jacobian=False, constrained=False)[0]
+        rows = rows + (mass_matrix(system, self.evaluator.lumped) @ A.ravel()).reshape(A.shape)
         return clamp.reaction_moments(system, self.X, rows[list(self.fem.tangent_dofs)])
 
     def statistics(self):

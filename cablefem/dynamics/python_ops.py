@@ -19,9 +19,9 @@ def evaluate(g, tangent, held):
 
 
 def finish(g):
-    """The rows at a point Newton accepted without evaluating it: for the reactions at the state
-    (BDF2) and for the history the loads commit; neither needed (generalised-alpha's reactions
-    evaluate at the state), nothing is evaluated."""
+    """The rows at a point Newton accepted without evaluating it: for the reactions, the rows of the
+    converged point (``Scheme.rows_at_state``), and for the history the loads commit; neither
+    needed, nothing is evaluated."""
     for m in g.members:
         if m.scheme.rows_at_state or m.system.kept_history():
             X, V, A = m.point(m.X1)

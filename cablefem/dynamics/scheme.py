@@ -13,8 +13,9 @@ in numba's subset that both faces call, and its ``Integrator`` subclass naming i
 
     PARAMETERS     the dtype of its record of parameters (one record per run)
     MEMORY         how many (N, 3) rows of earlier steps it keeps (``memory``, (MEMORY, N, 3))
-    ROWS_AT_STATE  whether the rows of an accepted step are those at the state (BDF2), or the end
-                   forces are evaluated again at the state after the step (generalised-alpha)
+    ROWS_AT_STATE  whether the end forces of an accepted step are its rows at the converged point,
+                   where the scheme balances the loads (BDF2: the state; generalised-alpha:
+                   t_{n+1-alpha_f}), or are evaluated again at the state after the step
     begin(scheme, clock, X, V, A, memory, guess, h)
                    a step of h from the state: clock.v_x, a_x, g_x, h, t_eval, and the predictor
                    into ``guess`` (the prescribed ends are put there afterwards)
