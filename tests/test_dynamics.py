@@ -332,3 +332,19 @@ def test_the_step_error_is_the_tension_the_difference_makes(order):
     assert integ.tension_error(X - along, X) == pytest.approx(line_type.EA * 1.01e-4 / tension, rel=1e-9)
     assert integ.tension_error(X - along - sideways, X) == pytest.approx(line_type.EA * 1.01e-4 / tension,
                                                                             rel=1e-5)
+
+
+def test_the_step_error_is_relative_to_the_starting_tension_where_the_line_is_slacker():
+    """The error control's tension scale does not fall below the line's largest tension at the start
+    (``clock["tension_scale"]``): a line gone slack is held to the error its pretension allows, not to
+    a fraction of its near-zero tension (OC4's line 2, slack for 4 s of each 10 s period, took 100-146
+    steps a second there at 3e-4 against 20 elsewhere; generalised-alpha failed at t = 24.5 s)."""
+    system, X, line_type = taut_line(2, 8)
+    integ = BDF2(system, X, lambda t: (system.line.fairlead, np.zeros(3), np.zeros(3)), dt=0.01)
+    assert integ.clock["tension_scale"][0] == pytest.approx(line_type.EA * 0.01, rel=1e-12)
+    slack = X / 1.01  # unstretched: no tension
+    along = np.column_stack([1e-4 * slack[:, 0], 0 * slack[:, 0], 0 * slack[:, 0]])
+    assert integ.tension_error(slack - along, slack) == pytest.approx(1e-4 / 0.01, rel=1e-9)
+    # taut beyond the start, the line's own largest tension is the scale
+    tauter = X * 1.02 / 1.01
+    assert integ.tension_error(tauter - along, tauter) == pytest.approx(1e-4 / 0.02, rel=1e-9)
