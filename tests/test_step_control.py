@@ -82,8 +82,8 @@ def test_no_step_grows_right_after_a_rejected_attempt():
         accepted = next(j for j in range(k + 1, len(attempts)) if attempts[j][2] == policy.CONVERGED)
         if accepted + 1 < len(attempts):
             assert attempts[accepted + 1][1] <= attempts[accepted][1] * (1 + 1e-12), attempts[k:accepted + 2]
-    # where Newton converges again the steps grow back to the largest
-    assert max(h for t, h, _ in attempts if t >= 3.0) == pytest.approx(0.5)
+    # where Newton converges again the steps grow past where it failed
+    assert max(h for t, h, _ in attempts if t >= 3.0) > 0.2 * 1.5
 
 
 if __name__ == "__main__":
