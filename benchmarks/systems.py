@@ -76,7 +76,7 @@ References, cached in ``systems.json`` next to this script (``--reference`` reco
   1e-3 s) and cablefem P2 at 2x them, dt 0.0025 s (validation/networks' reference settings); 0.41 %
   apart.
 
-    python -m benchmarks.systems [--reference] [--repeats N] [--systems oc4-semi] [--json FILE]
+    python -m benchmarks.systems [--reference] [--repeats N] [--systems oc4-semi] [--adaptive] [--json FILE]
 
 Last measured on the shared 2-core machine (load ~6), CPU s per simulated second, medians of 3
 rounds, all systems in one run; errors in % RMS against the code's own reference and against the
@@ -115,6 +115,60 @@ march). The best settings found, frames as at the defaults, take 0.17x. A fresh
 1.15-1.26x MoorDyn-C's in-process 1.52 s (the issue's target: <= 1.5x). The flume file is MoorDyn-C's
 cheapest case (21 nodes, dtM 5 ms: 0.07 s for 36 s), where cablefem's statics and set-up alone
 cost about that.
+
+Error control against the fixed default step (``--adaptive``: rows of cablefem at its defaults but
+for adaptive steps, ``error_tolerance`` 3e-4 to 1e-1, BDF2 and generalised-alpha, the largest step a
+twentieth of the period, frames at least that far apart, as ``adaptive = true`` alone gets them).
+An adaptive run's rows fall on its frames only, so the ``frames`` column compares every row at
+those times (1 s, 0.6 s, 0.745 s); ``steps`` and ``rejected`` are summed over the lines. One run per
+system, each with its fixed row beside it (machine load 3-13); CPU s per simulated second:
+
+    oc4-semi (repeats 3)                          run     steps   error frames  steps rejected
+    cablefem, defaults (P2 x 10, dt 0.25)         0.0037  0.0022   1.99   1.69   1450      153
+    adaptive BDF2, error 3e-4 (<= 0.5 s)          0.0135  0.0118   0.57   0.57   9248     1076
+    adaptive BDF2, error 3e-3                     0.0067  0.0050   0.52   0.52   4198      721
+    adaptive BDF2, error 3e-2                     0.0047  0.0030   1.07   1.07   2051      384
+    adaptive BDF2, error 1e-1                     0.0044  0.0026   1.55   1.55   1479      263
+    adaptive gen-alpha, error 3e-3                0.0072  0.0054   0.57   0.57   3931      884
+    adaptive gen-alpha, error 3e-2                0.0045  0.0029   0.84   0.84   2144      429
+    adaptive gen-alpha, error 1e-1                0.0039  0.0022   0.95   0.95   1421      227
+
+    flume-snap (repeats 3)                        run     steps   error frames  steps rejected
+    cablefem, defaults (P2 x 10, dt 0.15)         0.0029  0.0010  11.89  12.25    241        1
+    adaptive BDF2, error 3e-4 (<= 0.3 s)          0.0431  0.0406  14.67  14.67   9077      608
+    adaptive BDF2, error 3e-2                     0.0080  0.0060  14.17  14.17   1547      262
+    adaptive BDF2, error 1e-1                     0.0033  0.0017  11.13  11.13    956      110
+    adaptive gen-alpha, error 3e-2                0.0105  0.0085  16.87  16.87   1947      271
+    adaptive gen-alpha, error 1e-1                0.0049  0.0029  17.87  17.87   1479      101
+
+    semi-taut (repeats 1)                         run     steps   error frames  steps rejected
+    cablefem, the scene (P1 x NumSegs, dt 0.005)  0.1014  0.0631   0.73   0.70  35760        0
+    cablefem, best (P2 x NumSegs / 2, dt 0.05)    0.0479  0.0239   0.68   0.77   3576        0
+    adaptive BDF2, error 3e-4 (<= 0.745 s)        0.0169  0.0125   0.70   0.70   4130      165
+    adaptive BDF2, error 3e-2                     0.0092  0.0048   0.72   0.72    910      117
+    adaptive gen-alpha, error 3e-3                0.0140  0.0093   0.70   0.70   2118      509
+    adaptive gen-alpha, error 1e-1                0.0095  0.0048   3.08   3.08    642       77
+
+(the other tolerances, 1e-3 and 1e-2, fall between their neighbours). On OC4 error control buys
+accuracy, not time: every tolerance is more accurate than the fixed steps, the tightest down to
+the mesh's own error (0.5-0.6 %), but none is cheaper; generalised-alpha at 1e-1 halves the error
+at 1.05x the fixed steps' run time (1.00x their steps), BDF2 at 1e-1 takes 1.19x for 1.55 %. The
+steps go to line 2 while it is slack and where it snaps taut (rejections cluster there), but lines
+1 and 3, which never go slack, take more steps than the fixed 4 a second too below 1e-1: the
+estimate, largest at the fairlead element, is well above the step's share of the error measured
+here. On the flume's snap the error does
+not fall with the tolerance (11-18 % at every one: the mesh's error dominates, and the fixed 0.15 s
+steps' damping happens to offset it), and at 1e-1, the cheapest, BDF2 takes 1.14x the fixed run
+time for the same error. On the semi-taut network, whose scene sets 0.005 s, adaptive BDF2 at 3e-4
+reaches the scene's error in a sixth of its time and a third of the best row's (fixed steps of a
+fortieth of its 14.9 s period were not measured: ``defaults.forcing_periods`` does not read a
+coupled body's motion, so this scene without its dt would get 0.01 s). Two changes to the step
+control made these numbers (against the error relative to the line's present largest tension and
+the step sequence before them, each in the same run as its fixed row): the error relative to the
+line's largest tension at the start where the line is slacker (OC4 at 1e-1: 1390 steps and 385
+rejected where there were 1803 and 502; generalised-alpha at 3e-4 completed where it had failed at
+t = 24.5 s), and no growth right after a rejected attempt with two even steps to an output time
+instead of a step and a sliver (generalised-alpha at 1e-1: 227 rejected where there were 407).
 """
 
 import argparse
@@ -168,13 +222,16 @@ SYSTEMS = {
 }
 
 
-def error(t, tension, t_ref, reference, t_from):
+def error(t, tension, t_ref, reference, t_from, every=None):
     """RMS over t >= t_from [s] of ``tension`` (n, lines) [N] at times t (n,) minus ``reference``
     (m, lines) at times t_ref (m,) interpolated to t, relative to the reference's mean over that
-    window; the largest over the lines."""
+    window; the largest over the lines. With ``every`` [s], at the run's times that are multiples of
+    it only (the frames an adaptive run's rows fall on: every run compared at the same times)."""
     t, tension, reference = np.asarray(t), np.atleast_2d(np.asarray(tension).T).T, np.asarray(reference)
     reference = np.atleast_2d(reference.T).T
     window = t >= t_from - 1e-9
+    if every is not None:
+        window &= np.abs(t / every - np.round(t / every)) < 1e-6
     worst = 0.0
     for k in range(tension.shape[1]):
         on_run = np.interp(t[window], t_ref, reference[:, k])
@@ -207,10 +264,13 @@ def clocked(module, names):
             setattr(module, name, function)
 
 
-def scene_of(system, order=None, elements=None, dt=None, tolerance=None, factor=None):
+def scene_of(system, order=None, elements=None, dt=None, tolerance=None, factor=None, error_tolerance=None,
+             integrator=None):
     """The system's scene, every line's element order, element count (per segment; or each
     segment's count times ``factor``, rounded up), the step dt [s] and Newton's tolerance replaced
-    where given."""
+    where given; with ``error_tolerance``, adaptive steps at that local tension error, at most
+    ``largest_step(system)`` long, the frames at least that far apart (as ``adaptive = true`` alone
+    gets them, ``cablefem.model.defaults.step``); ``integrator`` by its registry name."""
     from cablefem.io import load_scene
     from cablefem.model.line import Segment
 
@@ -226,13 +286,29 @@ def scene_of(system, order=None, elements=None, dt=None, tolerance=None, factor=
                                             ("duration", SYSTEMS[system].get("duration"))) if value is not None}
     if dt is not None:  # a step given: fixed steps of it, as a scene's [solver] dt alone
         solver["adaptive"] = False
+    if integrator is not None:
+        solver["integrator"] = integrator
+    if error_tolerance is not None:
+        solver.update(adaptive=True, error_tolerance=error_tolerance, dt=largest_step(system))
+        scene = replace(scene, output=replace(scene.output, every=max(scene.output.every, solver["dt"])))
     return replace(scene, solver=replace(scene.solver, **solver)) if solver else scene
 
 
+def largest_step(system):
+    """The largest adaptive step [s] of ``system``: a twentieth of its forcing period, at most 1 s
+    (``cablefem.model.defaults.largest_step``, which does not see the semi-taut platform's period)."""
+    from cablefem.model import defaults
+
+    return min(defaults.LONGEST_STEP, SYSTEMS[system]["period"] / defaults.STEPS_PER_PERIOD)
+
+
 def run_cablefem(scene, duration=None):
-    """``run_scene`` on ``scene``: t (n,) [s], fairlead tensions (n, lines) [N] after each step,
-    CPU seconds of the whole run and of its steps (inside ``_march``)."""
+    """``run_scene`` on ``scene``: t (n,) [s], fairlead tensions (n, lines) [N] after each step
+    (adaptive steps: at each frame), CPU seconds of the whole run and of its steps (inside
+    ``_march``), the steps taken and rejected over all lines; ``failed``: the solver's message where
+    a step failed (then the rest is None)."""
     import cablefem.runs.run as runs
+    from cablefem.errors import ConvergenceError
 
     rows, spent, march = [], [0.0], runs._march
 
@@ -247,13 +323,17 @@ def run_cablefem(scene, duration=None):
     try:
         with tempfile.TemporaryDirectory(prefix="cablefem-systems-") as out:
             start = time.process_time()
-            runs.run_scene(scene, out, duration=duration, progress=False)
+            summary = runs.run_scene(scene, out, duration=duration, progress=False)
             run_s = time.process_time() - start
+    except ConvergenceError as failure:
+        return {"failed": str(failure).splitlines()[0], "t": None, "tension": None, "run_s": None, "steps_s": None,
+                "steps": None, "rejected": None}
     finally:
         runs._march = march
     t = np.array([row[0] for row in rows])
     tension = np.array([[np.linalg.norm(forces[0]) for forces in row[1]] for row in rows])
-    return {"t": t, "tension": tension, "run_s": run_s, "steps_s": spent[0]}
+    return {"t": t, "tension": tension, "run_s": run_s, "steps_s": spent[0], "steps": summary["steps"],
+            "rejected": sum(stats["rejected"] for stats in summary["integrator"])}
 
 
 def run_moordyn(system, scene, segments=1, dtM=None, ic_dtM=None, duration=None):
@@ -329,9 +409,15 @@ def window_start(system, scene):
     return scene.solver.duration - spec["window_periods"] * spec["period"]
 
 
-def rows_of(system):
-    """(label, runner) of the system's rows: MoorDyn-C on the file, cablefem at its defaults and at
-    its best settings."""
+#: the adaptive rows (``--adaptive``): local tension errors per step and the integrators
+ADAPTIVE_TOLERANCES = (3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 1e-1)
+ADAPTIVE_INTEGRATORS = ("bdf2", "generalized-alpha")
+
+
+def rows_of(system, adaptive=False):
+    """(label, runner, own reference) of the system's rows: MoorDyn-C on the file, cablefem at its
+    defaults and at its best settings; with ``adaptive``, cablefem at its defaults but for adaptive
+    steps at each of ``ADAPTIVE_TOLERANCES`` with each of ``ADAPTIVE_INTEGRATORS``."""
     best = SYSTEMS[system]["best"]
     mesh = best["elements"] if "elements" in best else f"{best['factor']:g} NumSegs"
     label = f"cablefem, best (P{best['order']} x {mesh}, dt {best['dt']:g}, tol {best['tolerance']:g})"
@@ -339,50 +425,71 @@ def rows_of(system):
     line, solver = scene.lines[0], scene.solver
     steps = f"adaptive <= {solver.dt:g}" if solver.adaptive else f"dt {solver.dt:g}"
     defaults = f"cablefem, defaults (P{line.order} x {sum(s.elements for s in line.segments)}, {steps})"
-    return [("MoorDyn-C, the file", lambda: run_moordyn(system, scene_of(system))),
-            (defaults, lambda: run_cablefem(scene_of(system))),
-            (label, lambda: run_cablefem(scene_of(system, **best)))]
+    rows = [("MoorDyn-C, the file", lambda: run_moordyn(system, scene_of(system)), "moordyn"),
+            (defaults, lambda: run_cablefem(scene_of(system)), "cablefem"),
+            (label, lambda: run_cablefem(scene_of(system, **best)), "cablefem")]
+    if adaptive:
+        short = {"bdf2": "BDF2", "generalized-alpha": "gen-alpha"}
+        rows += [(f"cablefem, adaptive {short[name]}, error {tolerance:g} (<= {largest_step(system):g} s)",
+                  lambda name=name, tolerance=tolerance: run_cablefem(
+                      scene_of(system, error_tolerance=tolerance, integrator=name)), "cablefem")
+                 for name in ADAPTIVE_INTEGRATORS for tolerance in ADAPTIVE_TOLERANCES]
+    return rows
 
 
-def measure(system, repeats=3, recompute=False):
+def measure(system, repeats=3, recompute=False, adaptive=False):
     """Every row of ``system`` ``repeats`` times, the rows alternating: dict of the rows (label,
-    median CPU s per simulated second of run and steps, errors against both references, ratio of
-    run times to MoorDyn-C's) and the references' distance apart."""
+    median CPU s per simulated second of run and steps, errors against both references, at every
+    row and at the adaptive runs' frames, steps taken and rejected, ratio of run times to
+    MoorDyn-C's) and the references' distance apart. A row whose run failed has ``failed``."""
     spec = SYSTEMS[system]
-    if "module" in spec:  # a system of its own module: its references, rows and warm-up
+    if "module" in spec:  # a system of its own module: its references, rows, frames and warm-up
         custom = importlib.import_module(spec["module"])
-        refs, duration, runners = custom.references(), custom.DURATION, custom.rows()
+        refs, duration, runners, every = custom.references(), custom.DURATION, custom.rows(), custom.frames()
         custom.warm()
     else:
         refs = references(system, recompute)
         scene = scene_of(system)
-        duration, runners = scene.solver.duration, rows_of(system)
-        for settings in ({}, spec["best"]):  # numba's kernels loaded, MoorDyn's library too
+        duration = scene.solver.duration
+        every = max(scene.output.every, largest_step(system))  # where an adaptive run's rows fall
+        runners = rows_of(system, adaptive)
+        warm = [{}, spec["best"]] + ([{"error_tolerance": 1e-2, "integrator": name}
+                                      for name in ADAPTIVE_INTEGRATORS] if adaptive else [])
+        for settings in warm:  # numba's kernels loaded, MoorDyn's library too
             run_cablefem(scene_of(system, **settings), duration=0.1)
         run_moordyn(system, scene, duration=0.1)
     t_from = duration - spec["window_periods"] * spec["period"]
-    times = {label: {"run_s": [], "steps_s": []} for label, _ in runners}
-    errors = {}
+    times = {label: {"run_s": [], "steps_s": []} for label, _, _ in runners}
+    runs = {}
     for _ in range(repeats):
-        for label, runner in runners:
-            run = runner()
-            times[label]["run_s"].append(run["run_s"])
-            times[label]["steps_s"].append(run["steps_s"])
-            errors[label] = {name: error(run["t"], run["tension"], ref["t"], ref["tension"], t_from)
-                             for name, ref in refs.items()}
-    rows = [{"label": label, "run_per_s": float(np.median(times[label]["run_s"])) / duration,
-             "steps_per_s": float(np.median(times[label]["steps_s"])) / duration,
-             "run_s": times[label]["run_s"], "steps_s": times[label]["steps_s"], "errors": errors[label]}
-            for label, _ in runners]
-    for row, own in zip(rows, ("moordyn", "cablefem", "cablefem")):
-        row["ratio"] = row["run_per_s"] / rows[0]["run_per_s"]
-        row["steps_ratio"] = row["steps_per_s"] / rows[0]["steps_per_s"]
-        row["own_error"] = row["errors"][own]
-        row["other_error"] = row["errors"]["cablefem" if own == "moordyn" else "moordyn"]
+        for label, runner, _ in runners:
+            if runs.get(label, {}).get("failed"):
+                continue
+            run = runs[label] = runner()
+            if not run.get("failed"):
+                times[label]["run_s"].append(run["run_s"])
+                times[label]["steps_s"].append(run["steps_s"])
+    rows = []
+    for label, _, own in runners:
+        run = runs[label]
+        row = {"label": label, "own": own, "failed": run.get("failed"), "steps": run.get("steps"),
+               "rejected": run.get("rejected"), "run_s": times[label]["run_s"], "steps_s": times[label]["steps_s"]}
+        if not row["failed"]:
+            row.update(run_per_s=float(np.median(times[label]["run_s"])) / duration,
+                       steps_per_s=float(np.median(times[label]["steps_s"])) / duration,
+                       errors={name: error(run["t"], run["tension"], ref["t"], ref["tension"], t_from)
+                               for name, ref in refs.items()},
+                       at_frames=error(run["t"], run["tension"], refs[own]["t"], refs[own]["tension"], t_from, every))
+            row.update(own_error=row["errors"][own],
+                       other_error=row["errors"]["cablefem" if own == "moordyn" else "moordyn"],
+                       ratio=row["run_per_s"] / rows[0]["run_per_s"] if rows else 1.0,
+                       steps_ratio=row["steps_per_s"] / rows[0]["steps_per_s"] if rows else 1.0)
+        rows.append(row)
     apart = error(refs["cablefem"]["t"], refs["cablefem"]["tension"], refs["moordyn"]["t"], refs["moordyn"]["tension"],
                   t_from)
-    return {"system": system, "duration_s": duration, "window_from_s": t_from, "repeats": repeats, "rows": rows,
-            "references": {name: ref["settings"] for name, ref in refs.items()}, "references_apart": apart}
+    return {"system": system, "duration_s": duration, "window_from_s": t_from, "frames_s": every,
+            "repeats": repeats, "rows": rows, "references": {name: ref["settings"] for name, ref in refs.items()},
+            "references_apart": apart}
 
 
 def table(result):
@@ -391,12 +498,18 @@ def table(result):
     lines = [f"{result['system']}: {result['duration_s']:g} s simulated, CPU s per simulated second (median of "
              f"{result['repeats']}), error % RMS over t >= {result['window_from_s']:g} s against each code's own "
              f"reference (MoorDyn-C {refs['moordyn']}, cablefem {refs['cablefem']}; "
-             f"{100 * result['references_apart']:.2f} % apart) and against the other's",
-             f"{'row':54s} {'run':>7s} {'steps':>7s} {'error':>6s} {'other':>6s} {'run ratio':>9s} {'steps ratio':>11s}"]
+             f"{100 * result['references_apart']:.2f} % apart) and against the other's; 'frames': against its own "
+             f"at t = k {result['frames_s']:g} s only, where adaptive runs have their rows",
+             f"{'row':54s} {'run':>7s} {'steps':>7s} {'error':>6s} {'other':>6s} {'frames':>6s} {'run ratio':>9s} "
+             f"{'steps ratio':>11s} {'steps':>6s} {'rejected':>8s}"]
     for row in result["rows"]:
+        if row["failed"]:
+            lines.append(f"{row['label']:54s} failed: {row['failed']}")
+            continue
+        counts = f"{row['steps']:6d} {row['rejected']:8d}" if row["steps"] is not None else ""
         lines.append(f"{row['label']:54s} {row['run_per_s']:7.4f} {row['steps_per_s']:7.4f} "
-                     f"{100 * row['own_error']:6.2f} {100 * row['other_error']:6.2f} "
-                     f"{row['ratio']:9.2f} {row['steps_ratio']:11.2f}")
+                     f"{100 * row['own_error']:6.2f} {100 * row['other_error']:6.2f} {100 * row['at_frames']:6.2f} "
+                     f"{row['ratio']:9.2f} {row['steps_ratio']:11.2f} {counts}")
     if not SYSTEMS[result["system"]].get("target"):
         return "\n".join(lines)
     moordyn, defaults = result["rows"][0], result["rows"][1]
@@ -412,11 +525,13 @@ def main(argv=None):
     parser.add_argument("--systems", nargs="+", default=list(SYSTEMS), choices=list(SYSTEMS))
     parser.add_argument("--repeats", type=int, default=3, help="rounds of every row (the median is kept)")
     parser.add_argument("--reference", action="store_true", help="recompute the references (minutes)")
+    parser.add_argument("--adaptive", action="store_true",
+                        help="add cablefem's adaptive steps at ADAPTIVE_TOLERANCES, BDF2 and generalised-alpha")
     parser.add_argument("--json", help="write the results to this JSON file")
     args = parser.parse_args(argv)
     results = []
     for system in args.systems:
-        results.append(measure(system, args.repeats, args.reference))
+        results.append(measure(system, args.repeats, args.reference, args.adaptive))
         print(table(results[-1]), flush=True)
     if args.json:
         Path(args.json).write_text(json.dumps(results, indent=1) + "\n")

@@ -94,14 +94,23 @@ def run_cablefem(length, duration=DURATION):
 
 
 def rows():
-    """(label, runner) of the rows: MoorDyn-C on the file, cablefem at its defaults and at its best."""
+    """(label, runner, its own reference) of the rows: MoorDyn-C on the file, cablefem at its defaults and
+    at its best."""
     with tempfile.TemporaryDirectory() as folder:
         made, best = scene(MOORDYN_LENGTH, folder), scene(BEST_LENGTH, folder)
     count = sum(s.elements for s in made.lines[0].segments)
     best_count = sum(s.elements for s in best.lines[0].segments)
-    return [(f"MoorDyn-C, the file ({count} segments, dtM 1e-4)", run_moordyn),
-            (f"cablefem, defaults (Hermite x {count}, dt {made.solver.dt:g})", lambda: run_cablefem(MOORDYN_LENGTH)),
-            (f"cablefem, best (Hermite x {best_count}, dt {best.solver.dt:g})", lambda: run_cablefem(BEST_LENGTH))]
+    return [(f"MoorDyn-C, the file ({count} segments, dtM 1e-4)", run_moordyn, "moordyn"),
+            (f"cablefem, defaults (Hermite x {count}, dt {made.solver.dt:g})", lambda: run_cablefem(MOORDYN_LENGTH),
+             "cablefem"),
+            (f"cablefem, best (Hermite x {best_count}, dt {best.solver.dt:g})", lambda: run_cablefem(BEST_LENGTH),
+             "cablefem")]
+
+
+def frames():
+    """The frame interval [s] of the defaults' rows."""
+    with tempfile.TemporaryDirectory() as folder:
+        return scene(MOORDYN_LENGTH, folder).output.every
 
 
 def warm():

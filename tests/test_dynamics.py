@@ -365,3 +365,19 @@ def test_generalised_alpha_end_force_is_its_balance_not_the_states_strain(tmp_pa
     # measured: BDF2 0.49 %, generalised-alpha 0.81 % (the balance's lag alpha_f h = 0.05 s), the
     # loads at the state 94 %; the bounds leave twice the measured errors
     assert rms[BDF2] < 0.01 and rms[GeneralizedAlpha] < 0.015, rms
+
+
+def test_the_step_error_is_relative_to_the_starting_tension_where_the_line_is_slacker():
+    """The error control's tension scale does not fall below the line's largest tension at the start
+    (``clock["tension_scale"]``): a line gone slack is held to the error its pretension allows, not to
+    a fraction of its near-zero tension (OC4's line 2, slack for 4 s of each 10 s period, took 100-146
+    steps a second there at 3e-4 against 20 elsewhere; generalised-alpha failed at t = 24.5 s)."""
+    system, X, line_type = taut_line(2, 8)
+    integ = BDF2(system, X, lambda t: (system.line.fairlead, np.zeros(3), np.zeros(3)), dt=0.01)
+    assert integ.clock["tension_scale"][0] == pytest.approx(line_type.EA * 0.01, rel=1e-12)
+    slack = X / 1.01  # unstretched: no tension
+    along = np.column_stack([1e-4 * slack[:, 0], 0 * slack[:, 0], 0 * slack[:, 0]])
+    assert integ.tension_error(slack - along, slack) == pytest.approx(1e-4 / 0.01, rel=1e-9)
+    # taut beyond the start, the line's own largest tension is the scale
+    tauter = X * 1.02 / 1.01
+    assert integ.tension_error(tauter - along, tauter) == pytest.approx(1e-4 / 0.02, rel=1e-9)

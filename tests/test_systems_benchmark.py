@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from benchmarks.systems import SYSTEMS, error, scene_of
+from benchmarks.systems import SYSTEMS, error, largest_step, scene_of
 
 PERIOD, MEAN, AMPLITUDE = 10.0, 1.0e6, 2.0e5
 
@@ -76,3 +76,28 @@ def test_lazy_wave_rows_are_the_files_mesh_at_the_defaults_steps_and_half_of_it(
         np.testing.assert_array_equal(line.tangents[1], [0.0, 0.0, 1.0])
         assert scene.solver.dt == pytest.approx(10.0 / 40) and not scene.solver.adaptive
         assert scene.solver.duration == lazy.DURATION
+
+
+def test_error_at_frames_counts_only_the_times_on_them():
+    """``every``: the error at the run's times that are multiples of it, where an adaptive run has its
+    rows: a run wrong only between whole seconds has none there, and all of its error at every row."""
+    t = np.arange(0.0, 100.0 + 1e-9, 0.25)
+    run = sine(t)[:, None].copy()
+    run[np.abs(t - np.round(t)) > 1e-9] += 1e5
+    assert error(t, run, t, sine(t)[:, None], 80.0, every=1.0) == 0.0
+    assert error(t, run, t, sine(t)[:, None], 80.0) > 0.05
+
+
+@pytest.mark.parametrize("system", [name for name, spec in SYSTEMS.items() if "module" not in spec])
+def test_adaptive_rows_change_only_the_step_control(system):
+    """An adaptive row: the scene at its defaults with error control at the tolerance given, its
+    largest step a twentieth of the period and its frames at least that far apart."""
+    default, adaptive = scene_of(system), scene_of(system, error_tolerance=1e-2, integrator="generalized-alpha")
+    assert adaptive.solver.adaptive and adaptive.solver.error_tolerance == 1e-2
+    assert adaptive.solver.integrator == "generalized-alpha"
+    assert adaptive.solver.dt == pytest.approx(SYSTEMS[system]["period"] / 20) == largest_step(system)
+    assert adaptive.output.every == max(default.output.every, adaptive.solver.dt)
+    assert [(line.name, line.order) for line in adaptive.lines] == [(line.name, line.order) for line in default.lines]
+    assert [s.elements for line in adaptive.lines for s in line.segments] == \
+        [s.elements for line in default.lines for s in line.segments]
+    assert adaptive.motion == default.motion and adaptive.solver.duration == default.solver.duration

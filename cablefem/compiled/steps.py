@@ -448,7 +448,8 @@ def place_ends(p, k, j, h):
 def _tension_error(p, X1, low):
     """The local error of positions X1 against a solution of lower order ``low`` as a fraction of the
     line's largest tension: EA |d(X1 - low)/ds| at the axial (reduced) points, over the largest
-    EA max(|dX1/ds| - 1, 0) (``Integrator.tension_error``)."""
+    EA max(|dX1/ds| - 1, 0), or over the largest at the start where that is larger
+    (``Integrator.tension_error``)."""
     mesh = p.mesh
     largest, tension, stiffest = 0.0, 0.0, 0.0
     for e in range(mesh.dofs.shape[0]):
@@ -468,7 +469,7 @@ def _tension_error(p, X1, low):
             if stretch > 0.0:  # the strain's part: the tangent's component
                 largest = max(largest, EA * abs(r0 * d0 + r1 * d1 + r2 * d2) / stretch)
             tension = max(tension, EA * max(stretch - 1.0, 0.0))
-    return largest / max(tension, 1e-12 * stiffest)
+    return largest / max(tension, p.clock[0].tension_scale, 1e-12 * stiffest)
 
 
 @njit(cache=True, inline="always", _nrt=False)

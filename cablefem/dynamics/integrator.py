@@ -108,6 +108,7 @@ class Integrator:
         # adaptive steps: the error control's tolerance and first step, at most dt (``policy.advance``)
         self.adaptive, self.error_tolerance = bool(adaptive), float(error_tolerance)
         self.clock["proposal"] = self.dt / 8 if self.adaptive else 0.0
+        self.clock["tension_scale"] = self.largest_tension(self.X)
         self.memory = np.zeros((self.scheme.memory,) + self.X.shape)  # the scheme's rows of earlier steps
         self.group = None  # the ``Group`` that steps this line (a group of one, made on first use)
         self.last_h = None  # the last accepted step [s]
@@ -356,8 +357,15 @@ class Integrator:
         for rule, old in history.items():
             self.system.history[rule][0][...] = old
 
+    def largest_tension(self, X):
+        """The line's largest tension [N] at positions X (N, 3): EA max(|dX/ds| - 1, 0) over the axial
+        quadrature points."""
+        _, dr = self.fem.at_quadrature(X, self.fem.reduced)
+        return float(np.max(self.system.props["EA"][:, None] * np.maximum(np.linalg.norm(dr, axis=0) - 1.0, 0.0)))
+
     def tension_error(self, X_low, X=None):
-        """Estimated local error of a step as a fraction of the line's largest tension: EA |d(dX)/ds|
+        """Estimated local error of a step as a fraction of the line's largest tension, or of its
+        largest at the start where that is larger (``clock["tension_scale"]``): EA |d(dX)/ds|
         at the axial quadrature points for dX = X - X_low, the difference between the step's
         positions X (default: the state) and a solution of lower order."""
         fem, X = self.fem, self.X if X is None else X
@@ -368,7 +376,7 @@ class Integrator:
         # the strain's part of the difference: its component along the tangent dr / |dr|
         error = EA * np.abs(np.einsum("ceq,ceq->eq", dr, d_diff)) / np.where(stretch > 0.0, stretch, 1.0)
         tension = EA * np.maximum(stretch - 1.0, 0.0)
-        return float(error.max() / max(tension.max(), 1e-12 * EA.max()))
+        return float(error.max() / max(tension.max(), float(self.clock["tension_scale"][0]), 1e-12 * EA.max()))
 
     def reactions(self):
         """Forces (3,) the line exerts on its fairlead and anchor at the current state [N]: minus

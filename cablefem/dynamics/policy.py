@@ -102,10 +102,11 @@ STOP_SAFETY = 0.25
 #: (0 if none), the attempt that stopped a run, the last attempt's final relative residual, the
 #: attempt's factors (v_x, a_x, g_x) with d(X, V, A)/dX_{n+1} = g_x (1, v_x, a_x), its size h [s] and
 #: the time t_eval [s] at which the scheme evaluates the loads; the last converged attempt's local
-#: error (relative tension, < 0: none) and the step the error control proposes next [s] (0: none yet)
+#: error (relative tension, < 0: none), the step the error control proposes next [s] (0: none yet) and
+#: the least tension the error is relative to [N] (the line's largest at the start)
 CLOCK = np.dtype([("t", "f8"), ("h_before", "f8"), ("last_h", "f8"), ("stopped", "f8"), ("residual", "f8"),
                   ("v_x", "f8"), ("a_x", "f8"), ("g_x", "f8"), ("h", "f8"), ("t_eval", "f8"), ("error", "f8"),
-                  ("proposal", "f8")])
+                  ("proposal", "f8"), ("tension_scale", "f8")])
 #: what modified Newton's kept factors belong to (one record, kept between runs): the v_x of the
 #: factors (NaN: none; a_x and g_x follow from it), "auto"'s full-Newton attempts still to run and the
 #: kept factors' contraction of the residual (< 0: not known)
@@ -277,7 +278,9 @@ def advance(prob, k, target, first):
     above the tolerance tol is rejected and tried again at h max(0.2, 0.9 (tol / e)^(1/3)) (the
     error is O(h^3) for the second-order schemes); an accepted one proposes the next, h min(2,
     max(0.5, 0.9 (tol / e)^(1/3))), at most ``settings.max_step``, kept across calls
-    (``ops.proposal``); a step shortened to land on ``target`` or on a split only grows it. Where ``parts`` > 0
+    (``ops.proposal``), and right after a rejected attempt (inaccurate or failed) no longer than
+    itself; a step shortened to land on ``target`` or on a split only grows it, and what is left to
+    ``target`` under twice the step is taken in two even steps. Where ``parts`` > 0
     (the compiled steps, which know the prescribed ends at ``parts`` splits of the target) a step
     ends on a split: an adaptive one is cut back to the split before it.
 
@@ -290,11 +293,14 @@ def advance(prob, k, target, first):
     if adaptive and first <= 0.0 and ops.proposal(prob) > 0.0:
         h = ops.proposal(prob)
     parts = settings.parts
+    rejected = False  # since the last accepted step
     while target - done > 1e-9 * target:
         remaining = target - done
         h = min(h, remaining)
         if ops.last_step(prob) > 0.0:
             h = min(h, settings.growth * ops.last_step(prob))
+        if adaptive and h < remaining < 2.0 * h:  # two even steps to the end, not a step and a sliver
+            h = 0.5 * remaining
         if remaining - h <= settings.stretch * h:  # land on the end, never leave a sliver of it
             h = remaining
         planned = h
@@ -321,9 +327,11 @@ def advance(prob, k, target, first):
                 ops.record_stop(prob, h)
                 return FAILED
             h *= 0.5
+            rejected = True
             continue
         if outcome == INACCURATE:  # converged, its error too large: smaller, as the error says
             ops.count(prob, NUMBER[REJECTED], NUMBER[1])
+            rejected = True
             smaller = h * max(0.2, 0.9 * (settings.error_tolerance / ops.last_error(prob)) ** (1.0 / 3.0))
             if smaller < settings.min_dt:  # the error does not fall with the step: stop, as a halving does
                 ops.record_stop(prob, h)
@@ -337,9 +345,11 @@ def advance(prob, k, target, first):
             error = ops.last_error(prob)
             if error >= 0.0:  # propose the next; a step cut to land on the end or a split only grows it
                 factor = 0.9 * (settings.error_tolerance / error) ** (1.0 / 3.0) if error > 0.0 else 2.0
-                proposal = min(settings.max_step, h * min(2.0, max(0.5, factor)))
-                if h >= ops.proposal(prob) * (1 - 1e-12) or proposal > ops.proposal(prob):
+                # no growth right after a rejection (Hairer, Norsett & Wanner II.4): it would be rejected again
+                proposal = min(settings.max_step, h * min(1.0 if rejected else 2.0, max(0.5, factor)))
+                if rejected or h >= ops.proposal(prob) * (1 - 1e-12) or proposal > ops.proposal(prob):
                     ops.set_proposal(prob, proposal)
+            rejected = False
             h = ops.proposal(prob) if ops.proposal(prob) > 0.0 else target
         else:
             h = target

@@ -11,8 +11,9 @@
 - **The step.** Fixed steps of a fortieth of the shortest period of what drives the scene (a motion's
   period or ramp, the strong wave components). Error control (``adaptive = true``, both integrators,
   lines and networks, local tension error ``Solver.error_tolerance``) is not the default: on OC4's
-  chains, whose line 2 snaps every period, it fails with steps up to 0.5 s (t = 28.9 s) or a
-  tolerance of 1e-2 (t = 45.3 s), and at 3e-3 costs 3x the fixed steps (docs/scene.md). Asked for
+  chains it is more accurate but never cheaper, on the flume chain's snap no more accurate at any
+  tolerance and dearer, and its rows fall on the frames only (docs/scene.md; ``python -m
+  benchmarks.systems --adaptive``). Asked for
   alone, its largest step is a twentieth of that period (``largest_step``).
 - **VTK frames.** A MoorDyn file's dtOut where it gives one; else a tenth of the shortest forcing
   period (each frame ends a compiled march and costs ~2 ms of OC4's run; tensions.csv keeps every
