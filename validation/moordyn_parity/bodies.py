@@ -64,7 +64,7 @@ def run_moordyn_body(path, scene, body, duration, settings, coupling_dt=COUPLING
     segments = {line: n * settings["segments"] for line, n in peer.line_segments(text).items()}
     text = peer.rewrite_input(text, settings["ic_dtM"], segments, base_dir=path.parent)
     names, ids = body_points(scene, body)
-    steps = int(round(duration / coupling_dt))
+    steps = round(duration / coupling_dt)
     t = np.arange(steps + 1) * coupling_dt
     poses, _ = body_pose(scene.bodies[body], t)
     forces = np.empty((steps + 1, len(ids), 3))
