@@ -270,6 +270,25 @@ def test_a_toml_gives_the_files_coupled_body_a_motion_and_the_current_a_profile(
         assert f"{key}: " in error.value.message() and reason in error.value.message(), error.value.message()
 
 
+def test_motion_checks_the_chord_only_of_lines_it_alone_sets(tmp_path):
+    """[motion]'s chord-strain check reads a line's chord from its anchor to its moving fairlead. On
+    bodyDrag.txt with its anchor made Coupled and heaved 0.5 m, the line's other end is on the free
+    body, which the file puts 5 m above the anchor (the body hangs 10.8 m below the surface): the
+    chord the check would read, 5.5 m for 4.5 m of line, is no chord of the run, and the scene reads.
+    On lines.txt, whose lines run from Fixed anchors to the Coupled fairleads, a surge that would
+    stretch them 25 % is still refused."""
+    text = open(data(os.path.join("laws", "bodyDrag.txt")), encoding="utf-8").read()
+    (tmp_path / "driven.txt").write_text(text.replace("2         Fixed", "2         Coupled"))
+    motion = '[motion]\nkind = "harmonic"\namplitude = [{}]\nperiod = 5.0\n'
+    (tmp_path / "driven.toml").write_text('[moordyn]\nfile = "driven.txt"\n' + motion.format("0, 0, 0.5"))
+    scene = load_scene(tmp_path / "driven.toml")
+    assert scene.points["point2"].kind == "coupled" and scene.bodies["body1"].kind == "free"
+    (tmp_path / "surged.toml").write_text(f'[moordyn]\nfile = "{data("lines.txt")}"\n' + motion.format("250, 0, 0"))
+    with pytest.raises(InputError) as error:
+        load_scene(tmp_path / "surged.toml")
+    assert "motion.amplitude: " in error.value.message() and "absurd strain" in error.value.message()
+
+
 def test_the_one_list_of_refusals_is_the_table_in_the_docs():
     """docs/scene.md "What stays refused" holds every row of moordyn_sections.REFUSED as written there."""
     from cablefem.io.moordyn_sections import REFUSED

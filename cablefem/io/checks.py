@@ -219,6 +219,8 @@ def check_motion(scene):
     key = {"harmonic": "motion.amplitude", "circular": "motion.radius", "table": "motion.file"}[motion.kind]
     _check_pace(scene, motion)
     for i, line in enumerate(scene.lines):
+        if not _chord_set_by_motion(scene, line):
+            continue
         strain, displacement, when = peak_chord_strain(line, motion)
         if strain > v.MAX_CHORD_STRAIN:
             chord = float(np.linalg.norm(line.fairlead + displacement - line.anchor))
@@ -228,6 +230,22 @@ def check_motion(scene):
                          f"an absurd strain of {100 * strain:.1f} % (more than {100 * v.MAX_CHORD_STRAIN:g} %) "
                          f"to reach it (anchor-fairlead distance {chord:.6g} m, unstretched length "
                          f"{line.unstretched_length:.6g} m)")
+
+
+def _chord_set_by_motion(scene, line):
+    """Whether [motion] alone sets ``line``'s chord: its fairlead end follows [motion] (the line's own
+    fairlead, or a coupled point off any body) and its anchor end stays where the line has it (the
+    line's own anchor, a fixed point, or a point of a fixed body). A line with an end on a free point
+    or a free body, or moved by a coupled body's motion, has a chord that the run solves for or that
+    [motion] does not give."""
+    points, bodies = scene.points, scene.bodies
+    anchor, fairlead = line.ends
+    if fairlead is not None and (points[fairlead].body is not None or points[fairlead].kind != "coupled"):
+        return False
+    if anchor is None:
+        return True
+    point = points[anchor]
+    return bodies[point.body].kind == "fixed" if point.body is not None else point.kind == "fixed"
 
 
 def peak_chord_strain(line, motion):

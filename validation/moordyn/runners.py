@@ -63,10 +63,12 @@ def moordyn_motion(scene, points):
     return motion
 
 
-def run_moordyn_case(path, scene, duration, settings, options=None, initial_state=None, coupling_dt=COUPLING_DT):
+def run_moordyn_case(path, scene, duration, settings, options=None, initial_state=None, coupling_dt=COUPLING_DT,
+                     probe=None):
     """MoorDyn on ``path`` with the scene's motion, coupled every ``coupling_dt`` [s]: dict of t (n,),
     forces (n, k, 3) [N] (the peer's, end-node inertia not subtracted), forces_on_point (n, k, 3)
-    (end-node inertia subtracted), wall times [s], and the coupled points' positions (k, 3)."""
+    (end-node inertia subtracted), wall times [s], the coupled points' positions (k, 3), and the
+    ``probe``'s values (``peer.run_moordyn``)."""
     text = Path(path).read_text()
     counts = peer.line_segments(text)
     segments = {line_id: n * settings["segments"] for line_id, n in counts.items()}
@@ -78,7 +80,7 @@ def run_moordyn_case(path, scene, duration, settings, options=None, initial_stat
     _, points = peer.coupled_points(path)
     result = peer.run_moordyn(path, moordyn_motion(scene, points), duration, coupling_dt,
                               dtM=settings["dtM"], segments=segments, options=options,
-                              ic_dtM=settings["ic_dtM"], initial_state=initial_state)
+                              ic_dtM=settings["ic_dtM"], initial_state=initial_state, probe=probe)
     acceleration = np.array([fairlead_motion(scene.motion, t)[2] for t in result["t"]])
     result["forces_on_point"] = result["forces"] - np.einsum("nkab,nb->nka", result["end_mass"], acceleration)
     result["points"] = points
