@@ -28,19 +28,17 @@ default with its stationary solver, or its dynamics with CdScaleIC where a file 
 cablefem solves the statics to its tolerance) and in their discretisation (MoorDyn-C's lumped masses
 at NumSegs; cablefem's elements).
 
-Measured on MoorDyn v2.7.1's tests/Mooring (the moordyn 2.7 wheel; 2 shared cores; 26 min):
+Measured on MoorDyn v2.7.1's tests/Mooring (the moordyn 2.7 wheel; 2 shared cores; 17 min):
 
 - MoorDyn-C loads, initialises and steps 38 of the 42 files (not: body_tests/pinnedBody.txt,
   riser/riser.txt and riser_ic2.txt, and time_schemes.txt's unexpanded ``@DT@`` template).
-- cablefem solves and runs 34 of those 38 (89 %; the issue's target 90 %, not met). The 4 that do
-  not: a free body or a free rod carrying rods in a run, which cablefem refused (BodiesAndRods,
-  RodHanging, riser/riser_ic1.txt, whose statics solve; they run now, ``--only RodHanging.txt
-  BodiesAndRods.dat riser/riser_ic1.txt``: the count with them is 37 of 38, 97 %, not yet re-measured
-  over the whole corpus), and polyester/visco.txt, a 1 m line between points 2 m apart (a strain of
-  100 %, refused as absurd). body_tests/rotatingBody.txt and local_euler/complex_system.txt run: a
-  point of a free body where several lines meet was a junction too (tests/test_body_points.py).
+- cablefem solves and runs 37 of those 38 (97 %; the issue's target 90 %). The one that does not:
+  polyester/visco.txt, a 1 m line between points 2 m apart (a strain of 100 %, refused as absurd).
+  The free rod (RodHanging) and the free bodies carrying rods (BodiesAndRods, riser/riser_ic1.txt)
+  run (``cablefem.loads.rod_body``); body_tests/rotatingBody.txt and local_euler/complex_system.txt
+  run: a point of a free body where several lines meet was a junction too (tests/test_body_points.py).
 - Median end-tension difference against MoorDyn-C's initial condition of the file as given: 2.80 %
-  over 66 lines (target <= 2 %, not met). Against MoorDyn-C relaxed: 5.26 % over 69 lines; over the
+  over 66 lines (target <= 2 %, not met). Against MoorDyn-C relaxed: 5.26 % over 85 lines; over the
   48 of them at equilibrium in relaxed MoorDyn-C: 2.03 % (not met either). Relaxing moves the
   unrelaxed files' lines (wavekin_2, wavekin_3 and wavekin_7: 2.8 %, 2.8 %, 2.6 % as given, 0.52 %
   relaxed and at equilibrium) and adds the free-hanging lines whose ends MoorDyn-C's TmaxIC 0 leaves
