@@ -161,8 +161,7 @@ not fall with the tolerance (11-18 % at every one: the mesh's error dominates, a
 steps' damping happens to offset it), and at 1e-1, the cheapest, BDF2 takes 1.14x the fixed run
 time for the same error. On the semi-taut network, whose scene sets 0.005 s, adaptive BDF2 at 3e-4
 reaches the scene's error in a sixth of its time and a third of the best row's (fixed steps of a
-fortieth of its 14.9 s period were not measured: ``defaults.forcing_periods`` does not read a
-coupled body's motion, so this scene without its dt would get 0.01 s). Two changes to the step
+fortieth of its 14.9 s period, what this scene without its dt now gets, were not measured). Two changes to the step
 control made these numbers (against the error relative to the line's present largest tension and
 the step sequence before them, each in the same run as its fixed row): the error relative to the
 line's largest tension at the start where the line is slacker (OC4 at 1e-1: 1390 steps and 385

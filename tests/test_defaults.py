@@ -118,6 +118,25 @@ def test_largest_step_follows_the_shortest_strong_wave_period():
     assert defaults.forcing_periods(table) == [1.0, 17.0]  # twice its rows' interval, and its ramp
 
 
+def test_a_network_driven_by_its_platform_alone_steps_a_fortieth_of_the_platforms_period():
+    """validation/networks' semi-taut system without its [solver] dt and [output] every: its fairleads
+    sit on a coupled platform moving at 14.9 s (no [motion]), so the defaults' step is 14.9 / 40 s and
+    its frames 1.49 s, where a scene read before coupled bodies' motions counted got the plain 0.01 s."""
+    import tomllib
+
+    from cablefem.io.toml_scene import read_toml_scene
+
+    path = Path(__file__).resolve().parents[1] / "validation" / "networks" / "inputs" / "semitaut.toml"
+    data = tomllib.loads(path.read_text())
+    data.get("solver", {}).pop("dt", None)
+    data.get("output", {}).pop("every", None)
+    scene = read_toml_scene(str(path), data)
+    period = next(body.motion.period for body in scene.bodies.values() if body.kind == "coupled")
+    assert period == pytest.approx(14.9) and "motion" not in data
+    assert scene.solver.dt == pytest.approx(period / defaults.FIXED_STEPS_PER_PERIOD)
+    assert scene.output.every == pytest.approx(period / defaults.FRAMES_PER_PERIOD)
+
+
 def test_oc4_adaptive_with_steps_up_to_02_s_runs_past_where_it_failed(tmp_path):
     """Issue 33's case: OC4's chains, P1 x NumSegs, adaptive BDF2 allowed steps of 0.2 s, failed with
     "Newton did not converge at t = 77.1 s" (the compiled steps never grew after a cut step), then at

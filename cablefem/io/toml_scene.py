@@ -156,11 +156,11 @@ def read_toml_scene(path, data=None):
     motion = _motion(data["motion"], folder) if "motion" in data else Motion()
     solver_keys = _section(data, "solver", SOLVER_KEYS)
     solver, step_note = by_physics.step(replace(base.solver if base else Solver(), **solver_keys), solver_keys,
-                                        motion, environment.waves)
+                                        motion, environment.waves, bodies.values())
     output_keys = _section(data, "output", OUTPUT_KEYS)
     given = set(output_keys) | ({"every"} if base is not None and "output.every" in base.keys else set())
     output, frame_note = by_physics.frames(replace(base.output if base else Output(), **output_keys), given, solver,
-                                           motion, environment.waves)
+                                           motion, environment.waves, bodies.values())
     notes += [note for note in (step_note, frame_note) if note]
     if seabed_note is not None:  # a plane is used as given
         notes.append(seabed_note)

@@ -89,18 +89,28 @@ def moordyn_mesh(lines, water_density):
     return meshed, note
 
 
-def forcing_periods(motion, sea=None):
-    """The periods [s] of what drives a scene: a harmonic or circular motion's period, twice a motion
-    table's shortest row interval, a ramp, and
-    the waves' components of at least WAVE_AMPLITUDE_SHARE of the largest amplitude, and twice the
-    interval of a current's record that varies in time (MoorDyn's Currents 2 and 4)."""
+def _motion_periods(motion):
+    """A motion's periods [s]: a harmonic or circular motion's period, twice a table's shortest row
+    interval (the shortest period its rows resolve), its ramp."""
     periods = []
     if motion.kind in ("harmonic", "circular"):
         periods.append(motion.period)
     if motion.kind == "table" and motion.times is not None and len(motion.times) > 1:
-        periods.append(2.0 * float(np.min(np.diff(motion.times))))  # the shortest period its rows resolve
+        periods.append(2.0 * float(np.min(np.diff(motion.times))))
     if motion.ramp > 0.0:
         periods.append(motion.ramp)
+    return periods
+
+
+def forcing_periods(motion, sea=None, bodies=()):
+    """The periods [s] of what drives a scene: the fairleads' [motion] and each coupled body's motion
+    (``_motion_periods``), the waves' components of at least WAVE_AMPLITUDE_SHARE of the largest
+    amplitude, and twice the interval of a current's record that varies in time (MoorDyn's Currents 2
+    and 4)."""
+    periods = _motion_periods(motion)
+    for body in bodies:
+        if body.kind == "coupled" and body.motion is not None:
+            periods += _motion_periods(body.motion)
     if sea is not None:
         amplitude, omega = np.asarray(sea.amplitude, dtype=float), np.asarray(sea.omega, dtype=float)
         if amplitude.size:  # a sea of no components carries a current alone
@@ -114,13 +124,13 @@ def forcing_periods(motion, sea=None):
     return [p for p in periods if p > 0.0]
 
 
-def largest_step(motion, sea=None):
+def largest_step(motion, sea=None, bodies=()):
     """The largest adaptive step [s]: the shortest forcing period / STEPS_PER_PERIOD, at most LONGEST_STEP."""
-    periods = forcing_periods(motion, sea)
+    periods = forcing_periods(motion, sea, bodies)
     return min([LONGEST_STEP] + [p / STEPS_PER_PERIOD for p in periods])
 
 
-def step(solver, given, motion, sea=None):
+def step(solver, given, motion, sea=None, bodies=()):
     """``solver`` with the step chosen where the [solver] keys in ``given`` (the names the scene sets)
     leave it open: neither ``dt`` nor ``adaptive`` given, fixed steps of the shortest forcing period /
     FIXED_STEPS_PER_PERIOD (the plain 0.01 s where nothing drives the scene); ``adaptive = true``
@@ -128,11 +138,11 @@ def step(solver, given, motion, sea=None):
     if "dt" in given or ("adaptive" in given and not solver.adaptive):
         return solver, None
     if "adaptive" in given:
-        solver = replace(solver, dt=largest_step(motion, sea))
+        solver = replace(solver, dt=largest_step(motion, sea, bodies))
         return solver, (f"steps: error control, local tension error {solver.error_tolerance:g} of each line's "
                         f"largest tension per step, at most {solver.dt:g} s (a twentieth of the shortest forcing "
                         f"period, at most {LONGEST_STEP:g} s)")
-    periods = forcing_periods(motion, sea)
+    periods = forcing_periods(motion, sea, bodies)
     if not periods:
         return solver, None
     solver = replace(solver, dt=min(periods) / FIXED_STEPS_PER_PERIOD)
@@ -140,14 +150,14 @@ def step(solver, given, motion, sea=None):
                     f"period ({min(periods):g} s); [solver] dt or adaptive = true set them")
 
 
-def frames(output, given, solver, motion, sea=None):
+def frames(output, given, solver, motion, sea=None, bodies=()):
     """``output`` with its frame interval ``every`` [s] chosen where ``given`` (the [output] keys the
     scene sets, "every" for a MoorDyn file's dtOut) leaves it open: a tenth of the shortest forcing
     period, or the plain interval where nothing drives the scene; with error control at least its
     largest step (an adaptive run's steps land on every frame). Returns (output, note or None)."""
     if "every" in given:
         return output, None
-    periods = forcing_periods(motion, sea)
+    periods = forcing_periods(motion, sea, bodies)
     every = min(periods) / FRAMES_PER_PERIOD if periods else output.every
     if solver.adaptive:
         every = max(every, solver.dt)
