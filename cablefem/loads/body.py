@@ -32,6 +32,14 @@ def vex(skew):
     return np.array([skew[2, 1] - skew[1, 2], skew[0, 2] - skew[2, 0], skew[1, 0] - skew[0, 1]]) * 0.5
 
 
+def frame_rates(frame, X, V, A):
+    """R = R_0 Rx Ry Rz (``frame`` R_0) and its first and second time derivatives (3, 3) at pose X,
+    rates V, accelerations A (2, 3) each, and the angular velocity omega and acceleration alpha (3,) in
+    the scene's frame: [omega]x = R' R^T, [alpha]x = R'' R^T + R' R'^T."""
+    R, dR, ddR = (frame @ each for each in rotation_rates(X[1], V[1], A[1]))
+    return R, dR, ddR, vex(dR @ R.T), vex(ddR @ R.T + dR @ dR.T)
+
+
 def linear_in_acceleration(residual, X):
     """d(rows)/dA (6, 6) at pose X of ``residual(X, V, A)`` (6,), rows linear in A: its columns at
     unit accelerations, at rest."""
@@ -67,9 +75,7 @@ class BodyLoads:
     def kinematics(self, X, V, A):
         """R, the angular velocity omega and acceleration alpha (3,) in the scene's frame, and the
         centre of gravity's acceleration (3,), at pose X, rates V, accelerations A (2, 3) each."""
-        R, dR, ddR = (self.frame @ each for each in rotation_rates(X[1], V[1], A[1]))
-        omega = vex(dR @ R.T)
-        alpha = vex(ddR @ R.T + dR @ dR.T)
+        R, _, ddR, omega, alpha = frame_rates(self.frame, X, V, A)
         return R, omega, alpha, A[0] + ddR @ self.body.cg
 
     def residual(self, X, V, A):
@@ -104,8 +110,7 @@ class BodyLoads:
         buoyancy, the waterplane's spring and the steady external force (the added mass's share
         where it is the same on the three axes)."""
         body, rho, g = self.body, self.rho, self.g
-        R, omega, _, _ = self.kinematics(X, V, np.zeros((2, 3)))
-        dR = self.frame @ rotation_rates(X[1], V[1], np.zeros(3))[1]
+        R, dR, _, omega, _ = frame_rates(self.frame, X, V, np.zeros((2, 3)))
         v_g = V[0] + dR @ body.cg
         omega_b = R.T @ omega
         kinetic = 0.5 * body.mass * v_g @ v_g + 0.5 * omega_b @ (body.inertia * omega_b)

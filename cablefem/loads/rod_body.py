@@ -36,9 +36,8 @@ added, one mechanism for a free rod (one part), a pinned rod (and its pin) and a
 
 import numpy as np
 
-from cablefem.loads.body import BodyLoads, linear_in_acceleration, vex
+from cablefem.loads.body import BodyLoads, frame_rates, linear_in_acceleration
 from cablefem.loads.rod import drag, mass_matrix, static_loads, submerged_interval, turning
-from cablefem.model.network import rotation_rates
 from cablefem.model.rod import rod_end_local
 
 
@@ -65,11 +64,11 @@ class RodPart:
 
     def _motion(self, X, V, A):
         """The ends a, b (3,), their velocities, end A's acceleration, omega and alpha (3,)."""
-        R, dR, ddR = (self.frame @ each for each in rotation_rates(X[1], V[1], A[1]))
+        R, dR, ddR, omega, alpha = frame_rates(self.frame, X, V, A)
         (p_a, p_b) = self.local
         ends = X[0] + R @ p_a, X[0] + R @ p_b
         velocities = V[0] + dR @ p_a, V[0] + dR @ p_b
-        return ends, velocities, A[0] + ddR @ p_a, vex(dR @ R.T), vex(ddR @ R.T + dR @ dR.T)
+        return ends, velocities, A[0] + ddR @ p_a, omega, alpha
 
     def residual(self, X, V, A):
         """The rod's rows (6,) in its frame's balance: inertial force and moment about the reference
