@@ -145,8 +145,8 @@ def relaxed_copy(path):
 
 
 def moordyn_tensions(path):
-    """{line number: (tension at node 0, tension at node N, imbalance, (free end at node 0, at node N))}
-    [N, N, -, -] after MoorDyn-C's Init of ``path``, its coupled objects where the file puts them; run
+    """{line number: (tension at node 0, tension at node N, imbalance, (free end at node 0, at node N),
+    segments N)} [N, N, -, -, -] after MoorDyn-C's Init of ``path``, its coupled objects where the file puts them; run
     from the file's folder. The imbalance is the largest net force on the line's interior nodes, the
     free points it ends at with other lines and the file's free bodies and rods (MoorDyn's API does not
     say which lines end on a body), over the line's larger end tension: 0 at an equilibrium. A free end
@@ -212,26 +212,36 @@ def moordyn_tensions(path):
                 net = max(nodes + [at_points.get(moordyn.GetLineID(line), 0.0)] + free)  # a free end's own: 0
                 line_id = moordyn.GetLineID(line)
                 out[i] = ends + [net / max(ends) if max(ends) > 0.0 else float("inf"),
-                                 [(line_id, e) in free_ends for e in (0, 1)]]
+                                 [(line_id, e) in free_ends for e in (0, 1)], n]
             moordyn.Close(system)
     finally:
         os.chdir(cwd)
     return out
 
 
-def cablefem_outcome(path):
-    """(outcome, {line name: (anchor tension, fairlead tension)}): 'solved and ran', or why not."""
+def cablefem_outcome(path, segments):
+    """(outcome, {line name: (tension, tension)}): 'solved and ran', or why not. The tensions are
+    where MoorDyn-C's node 0 and node N tensions are, the middles of its end segments (s = L / 2N
+    and L - L / 2N for the N segments of line K in ``segments``: {K: N}); MoorDyn-C's end node
+    reports its end segment's tension, which carries all but half a segment of the line's weight."""
     from cablefem.errors import ConvergenceError, InputError
     from cablefem.io import load_scene
+    from cablefem.runs.results import LineSampler
     from cablefem.runs.run import run_scene
-    from cablefem.statics.scene import numpy_statics, static_network
+    from cablefem.statics.scene import numpy_statics, static_lines
 
     try:
         scene = load_scene(str(path))
-        reports, _, _, _ = static_network(numpy_statics(scene))
+        systems, results, _, _ = static_lines(numpy_statics(scene))
     except (InputError, ConvergenceError) as error:
         return f"statics: {str(error).replace(str(path) + ': ', '')[:100]}", {}
-    tensions = {r.name: (r.anchor_tension, r.fairlead_tension) for r in reports}
+    tensions = {}
+    for system, result in zip(systems, results):
+        name = system.line.name
+        if name.startswith("line") and name[4:].isdigit() and int(name[4:]) in segments:
+            length = system.line.unstretched_length
+            half = length / (2 * segments[int(name[4:])])
+            tensions[name] = tuple(LineSampler(system, [half, length - half]).tension(result.X))
     with tempfile.TemporaryDirectory() as out:
         try:
             run_scene(scene, out, duration=2 * scene.solver.dt, dt=scene.solver.dt)
@@ -308,7 +318,7 @@ def main(argv=None):
         loaded += 1
         # the relaxed reference where the file's own leaves a line out of balance (else the same)
         settled = theirs if all(v[2] < BALANCED for v in theirs.values()) else moordyn_child(path, args.timeout, True)
-        outcome, ours = cablefem_outcome(path)
+        outcome, ours = cablefem_outcome(path, {k: v[4] for k, v in theirs.items()})
         both += outcome == "solved and ran"
         lines = compare(theirs, ours)
         again = compare(settled, ours) if settled is not None else dict.fromkeys(lines)
