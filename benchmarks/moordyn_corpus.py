@@ -41,7 +41,7 @@ Measured on MoorDyn v2.7.1's tests/Mooring (the moordyn 2.7 wheel; 2 shared core
   run (``cablefem.loads.rod_body``); body_tests/rotatingBody.txt and local_euler/complex_system.txt
   run: a point of a free body where several lines meet was a junction too (tests/test_body_points.py).
 - Median end-tension difference against MoorDyn-C's initial condition (target <= 2 %): over its
-  lines at equilibrium, 0.11 % over 26 lines of the files as given and 0.02 % over 48 lines relaxed;
+  lines at equilibrium, 0.10 % over 26 lines of the files as given and 0.02 % over 48 lines relaxed;
   over all lines, relaxed 0.16 % over 85 lines, as given 2.27 % over 66 lines. Over all lines of the
   files as given the target is not met: 40 of those 66 lines are not at equilibrium in MoorDyn-C
   (most in files with TmaxIC 0, whose initial condition is the file's layout after one step:
