@@ -181,8 +181,7 @@ def test_junction_groups_step_with_every_scheme_and_adaptive_steps(tmp_path, int
     """A junction group is a problem the policy steps like a line (issue 31): generalised-alpha, and
     BDF2's adaptive steps, run the crowfoot; each solves the coupled equations at its last step
     (interior rows and the junction's balance below the tolerance's force), and its forces follow
-    BDF2's fixed-step run (the same motion: within 1 % of the largest force; generalised-alpha's
-    alpha_f dt later, where it balances)."""
+    BDF2's fixed-step run (the same motion: within 1 % of the largest force)."""
     from cablefem.runs.run import run_scene
 
     path = tmp_path / "crowfoot.toml"
@@ -199,14 +198,13 @@ def test_junction_groups_step_with_every_scheme_and_adaptive_steps(tmp_path, int
         rows = np.loadtxt(tmp_path / out / "tensions.csv", delimiter=",", skiprows=1)
         series.append(rows)
     ref, run = series
-    # generalised-alpha's forces are its balance at t_{n+1-alpha_f}, alpha_f = 1/3 at rho_inf 0.5: they
-    # follow BDF2's alpha_f dt earlier (0.35 %; at the same times 1.02 %, the force rising 137 kN/s)
-    lag = 0.05 / 3 if name == "generalized-alpha" else 0.0
+    # generalised-alpha's forces are its balance at t_{n+1-alpha_f} carried on to t_{n+1}
+    # (``policy.balance_lag``): they follow BDF2 at the same times, 0.34 % of the largest force apart
+    # (the balance as it is lags alpha_f dt: 1.02 %, the force rising 137 kN/s); BDF2 adaptive 0.50 %
     # compare at the reference's times (adaptive steps fall elsewhere: interpolate)
-    for column in range(1, ref.shape[1]):
-        values = np.interp(ref[:, 0], run[:, 0], run[:, column])
-        expected = np.interp(ref[:, 0] - lag, ref[:, 0], ref[:, column])
-        assert np.max(np.abs(values - expected)) <= 0.01 * np.abs(ref[:, 1:]).max()
+    worst = max(np.max(np.abs(np.interp(ref[:, 0], run[:, 0], run[:, column]) - ref[:, column]))
+                for column in range(1, ref.shape[1]))
+    assert worst <= 0.01 * np.abs(ref[:, 1:]).max(), worst / np.abs(ref[:, 1:]).max()
 
 
 def test_the_tripod_on_its_hinges_holds_still_with_either_integrator():

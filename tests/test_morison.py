@@ -26,9 +26,12 @@ CHAIN = LineType("chain", diameter=0.12, mass=90.0, EA=8e8, damping=0.01, Cd_nor
 BUOY = Joint("buoy", mass=500.0, volume=3.0, CdA=2.5, Ca=0.8)
 
 
-def test_a_stiff_line_in_waves_carries_the_integral_of_the_morison_force_to_its_ends():
-    result = check(10, 1, "bdf2")
-    assert result["error"] < 1e-4  # the target; measured 1.6e-6 (verification/waves)
+@pytest.mark.parametrize("scheme", ["bdf2", "generalized-alpha"])
+def test_a_stiff_line_in_waves_carries_the_integral_of_the_morison_force_to_its_ends(scheme):
+    # the target; measured 1.6e-6 and 8.9e-5 (verification/waves). Generalised-alpha's rows
+    # balance at t_{n+1-alpha_f}: reported as they are, a lag of alpha_f dt, 6.0e-3 here
+    result = check(10, 1, scheme)
+    assert result["error"] < 1e-4
 
 
 def wavy_scene(stretching="wheeler", fairlead_z=-10.0, depth=100.0):

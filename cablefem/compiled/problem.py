@@ -100,7 +100,7 @@ class _String:
                        ev.base_reduced, self.keeps, self.commits, clock, self.factors, integ.parameters,
                        np.zeros(len(policy.COUNTERS), dtype=np.int64), np.ascontiguousarray(ends, dtype=float),
                        np.ascontiguousarray(fractions, dtype=float), np.zeros((2, 3)), self.junction_ends,
-                       *self.junction)
+                       *self.junction, np.array(integ.balance_rows, dtype=float))
 
     def finish(self, prob):
         """Hand the run's results back to the integrator: counters, "auto"'s state, the seabed walk's
@@ -115,7 +115,7 @@ class _String:
         integ.last_residual = float(clock["residual"])
         if clock["t"] != integ.t:
             integ.X, integ.V, integ.A, integ.prediction = prob.X, prob.V, prob.A, prob.prediction
-            integ.memory = prob.memory
+            integ.memory, integ.balance_rows = prob.memory, prob.balance_rows
             integ.residual_rows = prob.rows if integ.scheme.rows_at_state else None
             integ.t, integ.last_h = float(clock["t"]), float(clock["last_h"])
         integ.clock = prob.clock

@@ -59,12 +59,14 @@ FRACTIONS = 2 ** DEPTH
 #: and fairlead at the end of each step (m, 2, 3), at its splits (m, FRACTIONS - 1, 2, 3) and at the
 #: end of the attempt (2, 3); its junction ends, (2, 3) rows of (band row, junction, node), -1 where
 #: unused, the columns Z (n, 6) of K^-1 there, their end stiffness S (6, 6) and the string's own step
-#: there yE (6,)
+#: there yE (6,); the last balance's fairlead and anchor rows and what the reactions add to them
+#: (2, 2, 3) (``Integrator.balance_rows``)
 Problem = namedtuple("Problem", "settings mesh bed water pts work projector free_nodes interior free_order all_elements "
                                 "end_elements anchor_node fairlead_node scale increment_scale EA "
                                 "X V A memory prediction rows X1 Xe Ve Ae guess base "
                                 "rhs step original band lu ipiv multipliers base_full base_reduced keeps commits "
-                                "clock factors scheme counters ends fractions target junction_ends Z S yE")
+                                "clock factors scheme counters ends fractions target junction_ends Z S yE "
+                                "balance_rows")
 #: the strings stepped together: the policy's settings, the strings (numba's typed List of ``Problem``:
 #: ``strings_list``), the number of junctions, their step dq (3 J,), the string and node whose predictor
 #: places each junction (J, 2) and that place (J, 3), the junctions' balance (J, 3), the group's
@@ -97,6 +99,7 @@ def strings_list(problems):
 #: the scheme's arithmetic, bound per scheme by ``bound`` (``cablefem.dynamics.scheme``)
 scheme_begin = scheme_point = scheme_accept = scheme_error = None
 ROWS_AT_STATE = True
+_balance_lag = njit(cache=True, inline="always", _nrt=False)(policy.balance_lag)
 
 
 @njit(cache=True, _nrt=False)
@@ -385,6 +388,15 @@ def accept(p, h):
         _copy_flat(dst, src)
     clock = p.clock[0]
     clock.t, clock.h_before, clock.last_h = clock.t + h, h, h
+    if ROWS_AT_STATE:  # the balance's end rows, and the reactions' part carrying them on to t
+        lag = _balance_lag(clock.t, clock.t_eval, clock.t_balance)
+        for k in range(2):
+            node = p.fairlead_node if k == 0 else p.anchor_node
+            for a in range(3):
+                row = p.rows[node, a]
+                p.balance_rows[1, k, a] = lag * (row - p.balance_rows[0, k, a]) if lag != 0.0 else 0.0
+                p.balance_rows[0, k, a] = row
+        clock.t_balance = clock.t_eval
 
 
 @njit(cache=True, inline="always", _nrt=False)
@@ -515,9 +527,10 @@ def _forces(p, out):
                             p.rows)
         if lost != 0:
             return lost
+    lagged = ROWS_AT_STATE and p.clock[0].t_balance == p.clock[0].t_eval  # the rows are the last balance
     for a in range(3):
-        out[0, a] = -p.rows[p.fairlead_node, a]
-        out[1, a] = -p.rows[p.anchor_node, a]
+        out[0, a] = -p.rows[p.fairlead_node, a] - (p.balance_rows[1, 0, a] if lagged else 0.0)
+        out[1, a] = -p.rows[p.anchor_node, a] - (p.balance_rows[1, 1, a] if lagged else 0.0)
     if p.mesh.nodes.shape[0]:  # a point riding on an end: the line's own force leaves its load out
         state = (p.X, p.V, p.A, p.clock[0].t)
         kernels.subtract_node_loads(p.mesh, p.water, p.pts, p.work, state, p.fairlead_node, out[0])

@@ -79,7 +79,9 @@ class GeneralizedAlpha(Integrator):
     """Generalised-alpha (Chung & Hulbert 1993) with spectral radius ``rho_inf`` at infinite
     frequency: second order, unconditionally stable for linear problems, tunable high-frequency
     damping. The end forces (``reactions``) are the rows M A + G where the scheme balances them, at
-    t_{n+1-alpha_f} (reported at t_{n+1}: a lag of alpha_f h). Not M A + G at the state X_{n+1}:
+    t_{n+1-alpha_f}, carried on to t_{n+1} along the line through the last two balances
+    (``policy.balance_lag``: second order; the rows as they are lag by alpha_f h, first order:
+    verification/waves, case (e)). Not M A + G at the state X_{n+1}:
     the loads balance at X_{n+1-alpha_f} = (1 - alpha_f) X_{n+1} + alpha_f X_n, and a strain is not
     affine in the positions, so where a line turns by dtheta in a step the strain at X_{n+1} exceeds
     the balanced one by alpha_f dtheta^2 / 2 (of e = u' + w'^2 / 2), a tension error of EA alpha_f

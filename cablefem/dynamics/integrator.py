@@ -109,6 +109,10 @@ class Integrator:
         self.adaptive, self.error_tolerance = bool(adaptive), float(error_tolerance)
         self.clock["proposal"] = self.dt / 8 if self.adaptive else 0.0
         self.clock["tension_scale"] = self.largest_tension(self.X)
+        self.clock["t_balance"] = np.nan
+        # the last accepted step's rows at the fairlead and anchor where it balanced them, and what
+        # ``reactions`` adds to them (``policy.balance_lag``), (2, 2, 3)
+        self.balance_rows = np.zeros((2, 2, 3))
         self.memory = np.zeros((self.scheme.memory,) + self.X.shape)  # the scheme's rows of earlier steps
         self.group = None  # the ``Group`` that steps this line (a group of one, made on first use)
         self.last_h = None  # the last accepted step [s]
@@ -277,8 +281,14 @@ class Integrator:
         self.X, self.V, self.A, self.memory = X, V, A, memory
         self.t, self.last_h = self.t + h, h
         self.clock["t"], self.clock["h_before"], self.clock["last_h"] = self.t, h, h
-        # the rows of the converged point are the state's (BDF2), or the reactions evaluate again
+        # the rows of the converged point are where the scheme balances them (BDF2: the state), or the
+        # reactions evaluate again at the state
         self.residual_rows = self.rows if self.scheme.rows_at_state else None
+        if self.scheme.rows_at_state:
+            ends = self.rows[[self.fem.fairlead_dof, self.fem.anchor_dof]]
+            lag = policy.balance_lag(self.t, self.t_eval, float(self.clock["t_balance"][0]))
+            self.balance_rows = np.stack([ends, lag * (ends - self.balance_rows[0]) if lag != 0.0 else np.zeros((2, 3))])
+            self.clock["t_balance"] = self.t_eval
 
     def error(self):
         """The local tension error of the converged trial ``X1`` relative to the largest tension
@@ -348,11 +358,12 @@ class Integrator:
         and the committed history of the points."""
         history = {rule: old.copy() for rule, (old, _) in self.system.history.items()}
         return (self.t, self.X, self.V, self.A, self.residual_rows, self.last_h, self.memory.copy(),
-                self.clock.copy(), history)
+                self.clock.copy(), history, self.balance_rows.copy())
 
     def restore(self, snapshot):
         """Go back to a ``snapshot``."""
-        self.t, self.X, self.V, self.A, self.residual_rows, self.last_h, memory, clock, history = snapshot
+        self.t, self.X, self.V, self.A, self.residual_rows, self.last_h, memory, clock, history, balance = snapshot
+        self.balance_rows = balance.copy()
         self.memory, self.clock = memory.copy(), clock.copy()
         for rule, old in history.items():
             self.system.history[rule][0][...] = old
@@ -381,12 +392,17 @@ class Integrator:
     def reactions(self):
         """Forces (3,) the line exerts on its fairlead and anchor at the current state [N]: minus
         the rows there, less the load of a point riding on that end (the line's own force,
-        ``LineSystem.end_point_loads``)."""
+        ``LineSystem.end_point_loads``). Where the scheme balanced the last step before the state's
+        time (generalised-alpha), the rows there carried on to it along the line through the last
+        two balances (``policy.balance_lag``)."""
         rows = self.residual_rows
+        lag = np.zeros((2, 3))
         if rows is None:
             residual, _ = self.system.evaluate(self.system.state(self.X, self.V, self.A, self.t), jacobian=False)
             rows = residual + self.inertia(self.A)
-        fairlead, anchor = -rows[self.fem.fairlead_dof], -rows[self.fem.anchor_dof]
+        elif self.clock["t_balance"][0] == self.t_eval:  # the rows are the last accepted step's balance
+            lag = self.balance_rows[1]
+        fairlead, anchor = -rows[self.fem.fairlead_dof] - lag[0], -rows[self.fem.anchor_dof] - lag[1]
         if self.end_points:
             points = self.system.end_point_loads(self.X, self.V, self.A, self.t)
             fairlead, anchor = fairlead - points[0], anchor - points[1]

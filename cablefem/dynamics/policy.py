@@ -102,11 +102,23 @@ STOP_SAFETY = 0.25
 #: (0 if none), the attempt that stopped a run, the last attempt's final relative residual, the
 #: attempt's factors (v_x, a_x, g_x) with d(X, V, A)/dX_{n+1} = g_x (1, v_x, a_x), its size h [s] and
 #: the time t_eval [s] at which the scheme evaluates the loads; the last converged attempt's local
-#: error (relative tension, < 0: none), the step the error control proposes next [s] (0: none yet) and
-#: the least tension the error is relative to [N] (the line's largest at the start)
+#: error (relative tension, < 0: none), the step the error control proposes next [s] (0: none yet),
+#: the least tension the error is relative to [N] (the line's largest at the start) and the time [s]
+#: of the last accepted step's balance (its t_eval; NaN before the first: ``balance_rows``)
 CLOCK = np.dtype([("t", "f8"), ("h_before", "f8"), ("last_h", "f8"), ("stopped", "f8"), ("residual", "f8"),
                   ("v_x", "f8"), ("a_x", "f8"), ("g_x", "f8"), ("h", "f8"), ("t_eval", "f8"), ("error", "f8"),
-                  ("proposal", "f8"), ("tension_scale", "f8")])
+                  ("proposal", "f8"), ("tension_scale", "f8"), ("t_balance", "f8")])
+
+
+def balance_lag(t, t_eval, t_balance):
+    """The factor c of the reported end forces F(t) = F_b + c (F_b - F_b') of a scheme that balances the
+    loads before the state's time t (generalised-alpha at t_eval = t_{n+1-alpha_f}): the line through
+    the last two balances, F_b at t_eval and F_b' at t_balance, carried on to t; 0 where the balance is
+    the state's (BDF2) or there is no earlier one. Second order, where the balance alone lags by
+    t - t_eval (first order)."""
+    if t_eval == t or not t_balance < t_eval:  # (NaN: no balance before)
+        return 0.0
+    return (t - t_eval) / (t_eval - t_balance)
 #: what modified Newton's kept factors belong to (one record, kept between runs): the v_x of the
 #: factors (NaN: none; a_x and g_x follow from it), "auto"'s full-Newton attempts still to run and the
 #: kept factors' contraction of the residual (< 0: not known)

@@ -15,7 +15,8 @@ in numba's subset that both faces call, and its ``Integrator`` subclass naming i
     MEMORY         how many (N, 3) rows of earlier steps it keeps (``memory``, (MEMORY, N, 3))
     ROWS_AT_STATE  whether the end forces of an accepted step are its rows at the converged point,
                    where the scheme balances the loads (BDF2: the state; generalised-alpha:
-                   t_{n+1-alpha_f}), or are evaluated again at the state after the step
+                   t_{n+1-alpha_f}, carried on to t_{n+1} through the last two balances:
+                   ``policy.balance_lag``), or are evaluated again at the state after the step
     begin(scheme, clock, X, V, A, memory, guess, h)
                    a step of h from the state: clock.v_x, a_x, g_x, h, t_eval, and the predictor
                    into ``guess`` (the prescribed ends are put there afterwards)
