@@ -29,16 +29,33 @@ runs the cablefem commands of another checkout too (e.g. a worktree of main), in
 examples/flume_flat.toml, each in a new process with an empty numba cache (NUMBA_CACHE_DIR), so
 that it compiles everything the scene uses.
 
-First run after a fresh install: numba compiles the default scene's statics kernels and its BDF2
-steps in about 106 s of CPU (numba's compile events timed with an empty NUMBA_CACHE_DIR, a 2 s run;
-278 s of wall at a load average of 7 on the 2 cores; ``--first`` times the whole first run), so
-the <= 30 s target is not met. Compiling
-the policy's layers above Newton (attempt, advance) into ``steps`` (numba's inline="always", so
-that numba does not link and emit the whole call tree once more for each layer) measured 105 s:
-no gain, not kept; inlining Newton as well (three call sites) took longer than 125 s before it was
-stopped. What compiles is one unit per layer of the policy, each holding the element loop over
-the whole catalog; a strings' tuple of another length (a network of 2, 3 or 4 strings) is another
-numba type and compiles the group's steps again.
+First run after a fresh install (``python benchmarks/startup.py --first --repeats 1 --compare
+DIR``, DIR a checkout of the code before; one round, the 2-core machine at a load average of ~2):
+
+| first ``cablefem run``, empty numba cache | wall [s] | CPU [s] |
+|---|---|---|
+| default scene, before | 92.8 | 92.3 |
+| default scene, now | 63.9 | 63.6 |
+| examples/flume_flat.toml, before | 89.0 | 88.3 |
+| examples/flume_flat.toml, now | 62.8 | 62.5 |
+
+The <= 30 s target is not met. Nearly all of it is numba compiling, and numba links the code of
+every callee into its caller and optimises and compiles it there again (``cablefem.compiled.steps``,
+"Compile time"): each of the policy's four layers (steps, advance, attempt, newton) costs 4-9 s, its
+own code and again what it calls, the element loop over the whole catalog among it. Two changes
+gave the gain above, with results bitwise unchanged and the compiled steps as fast: a line's policy without numba's runtime
+(its reference counting on the ~50 arrays of the ``Problem`` every inlined op copies: -15 s), and no
+Python or C wrappers on functions Python does not call (-8 s). Measured and not kept (numba's compile
+events, an empty NUMBA_CACHE_DIR, a 1 s run): LLVM's optnone on the policy's layers, -4 s (their
+linked callees are still optimised and emitted again, and their own loops run unoptimised);
+NUMBA_OPT=0 for everything, 152 s against 88 (unoptimised code is larger to link and emit at every
+layer); attempt and advance inlined into ``steps`` (numba's inline="always"), -2 s, and with newton too
+(three call sites) 153 s against 85 (LLVM's SROA on one function holding that many copies of the ``Problem``);
+the ops inlined by LLVM (forceinline) instead of numba, +19 s (each op its own unit linking the
+element loop); C wrappers off everywhere, no change. A catalog without the rope, bending, soil and
+Morison loads compiles the default scene in 7 s less: compiling only the loads a scene has (numba
+specialised per set of loads, ``steps.bound``'s way per scheme) is worth about that, more with the
+waves, anisotropic friction and Hermite branches, and costs a full compilation for every new set.
 
 Last measured (medians of 7 rounds, byte-compiled, numba's cache warm, the 2-core machine):
 

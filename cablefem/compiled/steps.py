@@ -21,8 +21,12 @@ and the seabed's projector are the same for every line; only sizes differ), so t
 typed List (``strings_list``), whose type does not hold their number: one compilation serves every
 network. A tuple's does (each size compiled the group's steps again, minutes each, longer the more
 strings), and ``numba.literal_unroll`` versions each loop body per element. No numba runtime on a
-string (the small solves' scratch is in the group; the group's ops have it for the List), and no
-literal arguments (each compiles a callee once more: ``policy.FLAG``).
+string, nor on a line's policy (the small solves' scratch is in the group; the group's ops and policy
+have it for the List), and no literal arguments (each compiles a callee once more: ``policy.FLAG``).
+numba links the code of every callee into its caller and optimises and compiles it there again, so
+each layer of the policy (steps, advance, attempt, newton, each op that is not inlined) costs again
+what it calls, 2-4 s of the first run each: a function Python does not call has no Python wrapper
+(compiled, and linked into each caller), none has a C wrapper (``_compiler``).
 """
 
 import hashlib
@@ -198,7 +202,7 @@ def _assemble_at(p, X, V, A, time, tangent, held, elements, rows):
     return 0
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _assemble(p, tangent, held, elements):
     """The step residual of string p at its trial point over ``elements`` (``_assemble_at``), counted."""
     scheme_point(p.scheme, p.clock, p.X, p.V, p.A, p.memory, p.X1, p.Xe, p.Ve, p.Ae)
@@ -208,7 +212,7 @@ def _assemble(p, tangent, held, elements):
     return lost
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _increment(p, refactor):
     """String p's Newton increment for its rows into ``p.step`` (band order): with ``refactor`` from
     fresh LU factors of g_x times the band (counted; ``factors.v_x`` the v_x they belong to, NaN when
@@ -456,7 +460,7 @@ def place_ends(p, k, j, h):
     return True
 
 
-@njit(cache=True, _nrt=False)
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _tension_error(p, X1, low):
     """The local error of positions X1 against a solution of lower order ``low`` as a fraction of the
     line's largest tension: EA |d(X1 - low)/ds| at the axial (reduced) points, over the largest
@@ -547,7 +551,7 @@ def reactions(p, forces, k):
 # ------------------------------------------------------------------ the policy's ops on a group
 # (strings that meet at junctions: ``prob`` is a ``Group``; each op one compiled function, looping
 # over the strings with the string ops above)
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_evaluate(g, tangent, held):
     for k in range(len(g.strings)):
         lost = evaluate(g.strings[k], tangent, held)
@@ -556,7 +560,7 @@ def group_evaluate(g, tangent, held):
     return 0
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_finish(g):
     for k in range(len(g.strings)):
         lost = finish(g.strings[k])
@@ -565,7 +569,7 @@ def group_finish(g):
     return 0
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_norm(g):
     """The group's relative residual: every string's rows at its free nodes that are no junction
     end, and each junction's balance, the sum of its string ends' rows."""
@@ -586,7 +590,7 @@ def group_norm(g):
     return np.sqrt(total) / g.scale
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _junction_step(g):
     """g.dq (3 J) from sum over strings of S_k (dq_E - y_E,k) = 0 at every junction; False if singular."""
     n = 3 * g.junctions
@@ -614,7 +618,7 @@ def _junction_step(g):
     return _solve_small(A, b, n)
 
 
-@njit(cache=True, no_cpython_wrapper=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _condense(g):
     """Every string's step y + Z S (dq_E - y_E) at its junctions' step dq; its largest scaled entry."""
     size = 0.0
@@ -635,7 +639,7 @@ def _condense(g):
     return size
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_increment(g, refactor):
     """Every string's Newton increment (``_increment``), each condensed onto its junction ends and
     the junctions' step solved (``_junction_step``); the largest entry, each string's scaled to the
@@ -664,31 +668,31 @@ def group_factors_current(g):
     return factors_current(g.strings[0])
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_forget_factors(g):
     for k in range(len(g.strings)):
         forget_factors(g.strings[k])
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_take_step(g, fraction):
     for k in range(len(g.strings)):
         take_step(g.strings[k], fraction)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_set_base(g):
     for k in range(len(g.strings)):
         set_base(g.strings[k])
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_restore_base(g):
     for k in range(len(g.strings)):
         restore_base(g.strings[k])
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_hold(g, again):
     held = False
     for k in range(len(g.strings)):
@@ -696,13 +700,13 @@ def group_hold(g, again):
     return held
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_save_original(g):
     for k in range(len(g.strings)):
         save_original(g.strings[k])
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_restore_original(g):
     size = 0.0
     for k in range(len(g.strings)):
@@ -714,7 +718,7 @@ def group_restore_original(g):
     return size
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_begin(g, h):
     """Every string's step of h; each junction where its leader string predicts it."""
     for k in range(len(g.strings)):
@@ -731,13 +735,13 @@ def group_begin(g, h):
                     p.guess[p.junction_ends[s, 2], a] = g.at[p.junction_ends[s, 1], a]
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_restart(g):
     for k in range(len(g.strings)):
         restart(g.strings[k])
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_accept(g, h):
     for k in range(len(g.strings)):
         accept(g.strings[k], h)
@@ -763,7 +767,7 @@ def group_set_contraction(g, value):
     set_contraction(g.strings[0], value)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_count(g, counter, amount):
     for k in range(len(g.strings)):
         count(g.strings[k], counter, amount)
@@ -790,14 +794,14 @@ def group_record_stop(g, h):
     record_stop(g.strings[0], h)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_place_ends(g, k, j, h):
     for s in range(len(g.strings)):
         place_ends(g.strings[s], k, j, h)
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_error(g):
     worst = -1.0
     for k in range(len(g.strings)):
@@ -823,13 +827,13 @@ def group_proposal(g):
     return proposal(g.strings[0])
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_set_proposal(g, value):
     for k in range(len(g.strings)):
         set_proposal(g.strings[k], value)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def group_reactions(g, forces, k):
     """Every string's forces after step k into forces[k, string] (``_forces``)."""
     for s in range(len(g.strings)):
@@ -864,6 +868,23 @@ def _tag(scheme):
     return "".join(c if c.isalnum() else "_" for c in scheme.name) + "_" + digest.hexdigest()[:10]
 
 
+#: the policy's functions that Python calls (``cablefem.compiled.problem.Packer``): only they get
+#: numba's Python wrapper
+CALLED_FROM_PYTHON = ("attempt", "steps")
+
+
+def _compiler(kind):
+    """numba's njit for the policy's functions on a ``kind`` ("line", "group"): numba's runtime only
+    on a group (its strings' typed List; a line's ``Problem`` holds arrays Python owns, and with the
+    runtime every op copying it counts references to its ~50 arrays: 15 s more compilation of the
+    first run), a Python wrapper only where Python calls, and no C wrapper (nothing takes the
+    policy's functions as first-class values; the module's docstring, "Compile time")."""
+    def compile(function):
+        return njit(cache=True, _nrt=kind == "group", no_cpython_wrapper=function.__name__ not in CALLED_FROM_PYTHON,
+                    no_cfunc_wrapper=True)(function)
+    return compile
+
+
 def bound(scheme):
     """The policy's functions (``policy.FUNCTIONS``: newton, attempt, advance, steps) bound to the ops
     here and to ``scheme``'s arithmetic, compiled: {"line": on a string's ``Problem``, "group": on a
@@ -886,7 +907,7 @@ def bound(scheme):
         ops = ModuleType(f"{__name__}.{tag}.{kind}")
         for name in OPS:
             setattr(ops, name, namespace[prefix + name])
-        functions[kind] = policy.bind(ops, compile=njit(cache=True), name=f"{kind}_{tag}")
+        functions[kind] = policy.bind(ops, compile=_compiler(kind), name=f"{kind}_{tag}")
         ops.attempt = functions[kind]["attempt"]
     _BOUND[tag] = functions
     return functions
