@@ -52,7 +52,9 @@ NUMBA_OPT=0 for everything, 152 s against 88 (unoptimised code is larger to link
 layer); attempt and advance inlined into ``steps`` (numba's inline="always"), -2 s, and with newton too
 (three call sites) 153 s against 85 (LLVM's SROA on one function holding that many copies of the ``Problem``);
 the ops inlined by LLVM (forceinline) instead of numba, +19 s (each op its own unit linking the
-element loop); C wrappers off everywhere, no change. A catalog without the rope, bending, soil and
+element loop); C wrappers off everywhere, no change; the outer layers without LLVM's module passes
+over the code they link (replacing a method of numba's code library, which numba does not
+document), -1 to -5 s, not kept for that. A catalog without the rope, bending, soil and
 Morison loads compiles the default scene in 7 s less: compiling only the loads a scene has (numba
 specialised per set of loads, ``steps.bound``'s way per scheme) is worth about that, more with the
 waves, anisotropic friction and Hermite branches, and costs a full compilation for every new set.
