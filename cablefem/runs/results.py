@@ -230,13 +230,15 @@ class LineSampler:
         # every point, then the interior vertices from the left and from the right: their elements
         rows = np.concatenate([self.s, at - inset, at + inset])
         elements = fem._locate(rows)[0]
-        # each row's element's recovery points, and the weights of the polynomial through them at the row
+        # each row's element's recovery points, and the weights of the polynomial through them at the row;
+        # the law is evaluated once per element the rows lie in (``used``), at its points
         points, self.weights = recovery_points(fem, rows, elements)
-        self.law_points = points.ravel()
-        gradients, dofs = _basis(fem, self.law_points)[1::2]
+        used, first, self.row_element = np.unique(elements, return_index=True, return_inverse=True)
+        law_points = points[first].ravel()
+        gradients, dofs = _basis(fem, law_points)[1::2]
         self.stacked = (gradients, dofs)
-        self.law = tension_law(system, np.repeat(elements, points.shape[1]))
-        self.rope = RopeSampler(system, np.repeat(elements, points.shape[1]), self.law_points)
+        self.law = tension_law(system, np.repeat(used, points.shape[1]))
+        self.rope = RopeSampler(system, np.repeat(used, points.shape[1]), law_points)
         self.seconds = fem.local_second_basis(self.s) if fem.hermite else None  # (n, nloc)
         self.EI = system.props["EI"][self.element]
 
@@ -275,15 +277,16 @@ class LineSampler:
         return self.axial(X, V, ends)[1]
 
     def _sides(self, X):
-        """dX/ds at the recovery points of the points' elements and of the interior vertices' two
-        elements, ((n + 2 m) k, 3) for k recovery points per element."""
+        """dX/ds at the recovery points of the elements the points and the interior vertices' two
+        sides lie in, (e k, 3) for those e elements and k recovery points per element."""
         gradients, dofs = self.stacked
         return np.einsum("nl,nlc->nc", gradients, X[dofs])
 
     def _points(self, values):
-        """Values at the points (n,) from values at ``_sides``' rows: each row's polynomial through
-        its recovery points, and at an interior vertex the mean of its two elements'."""
-        values = np.einsum("rk,rk->r", self.weights, values.reshape(self.weights.shape))
+        """Values at the points (n,) from values at ``_sides``' rows: each point's polynomial through
+        its element's recovery points, and at an interior vertex the mean of its two elements'."""
+        values = values.reshape(-1, self.weights.shape[1])[self.row_element]
+        values = np.einsum("rk,rk->r", self.weights, values)
         n, m = len(self.s), len(self.vertices)
         out = values[:n].copy()
         if m:
@@ -327,8 +330,8 @@ class RopeSampler:
 def recovery_points(fem, s, elements):
     """Arc lengths (n, k) [m] of the k points of each of the elements ``elements`` (n,) where r' is
     superconvergent, and the weights (n, k) of the polynomial through them at arc lengths s (n,):
-    on Lagrange elements of order p the p Gauss-Legendre points (a quadratic's p - 1 degree
-    derivative error vanishes there); on cubic Hermite elements, whose r' interpolates at the
+    on Lagrange elements of order p the p Gauss-Legendre points (where the derivative of an
+    interpolation error of degree p + 1 vanishes); on cubic Hermite elements, whose r' interpolates at the
     vertices, the ends and the middle (the interpolant's r' error, xi (xi^2 - 1) in xi on [-1, 1],
     vanishes there)."""
     if fem.hermite:
