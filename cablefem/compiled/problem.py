@@ -6,7 +6,7 @@ import numpy as np
 
 from cablefem.compiled import kernels
 from cablefem.compiled.seabed import GRID, PLANE, TRIANGULATED, Projector
-from cablefem.compiled.steps import FRACTIONS, Group, Problem, bound, strings_list
+from cablefem.compiled.steps import CALLS, FRACTIONS, Group, Problem, bound, fill_calls, strings_list
 
 #: adaptive steps in the compiled loop end on this many even splits of an output interval (smaller
 #: ones go on in Python, where the ends are placed anywhere)
@@ -84,9 +84,10 @@ class _String:
         result = walk.Result(np.zeros(n, dtype=np.int64), np.zeros((3, n)), np.zeros((walk.OUTPUTS, n)))
         return Projector(self.kind, *grid, surface, typical, start, result, np.zeros((3, n)))
 
-    def problem(self, settings, ends, fractions):
+    def problem(self, settings, ends, fractions, calls):
         """The ``Problem`` of the integrator's current state, the anchor and fairlead at the ends of the
-        steps to come (m, 2, 3) and at their splits (m, FRACTIONS - 1, 2, 3)."""
+        steps to come (m, 2, 3) and at their splits (m, FRACTIONS - 1, 2, 3), calling the functions at
+        ``calls`` (``steps.CALLS``)."""
         integ, ev, fem = self.integ, self.ev, self.integ.fem
         clock = integ.clock.copy()
         clock["t"], clock["last_h"], clock["stopped"], clock["residual"] = integ.t, integ.last_h or 0.0, 0.0, np.nan
@@ -100,7 +101,7 @@ class _String:
                        ev.base_reduced, self.keeps, self.commits, clock, self.factors, integ.parameters,
                        np.zeros(len(policy.COUNTERS), dtype=np.int64), np.ascontiguousarray(ends, dtype=float),
                        np.ascontiguousarray(fractions, dtype=float), np.zeros((2, 3)), self.junction_ends,
-                       *self.junction, np.array(integ.balance_rows, dtype=float))
+                       *self.junction, np.array(integ.balance_rows, dtype=float), calls)
 
     def finish(self, prob):
         """Hand the run's results back to the integrator: counters, "auto"'s state, the seabed walk's
@@ -146,6 +147,9 @@ class Packer:
         self.scratch = (np.zeros(3 * J), self.leaders, np.zeros((J, 3)), np.zeros((J, 3)), group.scale,
                         np.zeros((3 * J, 3 * J)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros(6), np.zeros(6))
         self.junctions = J
+        #: the addresses of what the compiled steps call (``steps.CALLS``), shared by every Problem and Group
+        self.calls = np.zeros(len(CALLS), dtype=np.int64)
+        self.called = False
 
     @classmethod
     def for_group(cls, group):
@@ -172,10 +176,13 @@ class Packer:
     def pack(self, ends):
         """What the compiled policy steps: a line's ``Problem``, or the ``Group`` of the strings'
         current states; each string's ends (``ends``)."""
-        self.problems = [string.problem(self.settings, *each) for string, each in zip(self.strings, ends)]
-        if self.kind == "line":
-            return self.problems[0]
-        return Group(self.settings, strings_list(self.problems), self.junctions, *self.scratch)
+        self.problems = [string.problem(self.settings, *each, self.calls) for string, each in zip(self.strings, ends)]
+        prob = self.problems[0] if self.kind == "line" else Group(self.settings, strings_list(self.problems),
+                                                                   self.junctions, *self.scratch, self.calls)
+        if not self.called:  # once: the addresses, for the types of these (``steps.fill_calls``)
+            fill_calls(self.functions, prob, self.problems[0], self.calls)
+            self.called = True
+        return prob
 
     def finish(self):
         """Hand each string's results back from the Problems ``pack`` made (``_String.finish``)."""

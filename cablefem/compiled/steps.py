@@ -24,9 +24,12 @@ strings), and ``numba.literal_unroll`` versions each loop body per element. No n
 string, nor on a line's policy (the small solves' scratch is in the group; the group's ops and policy
 have it for the List), and no literal arguments (each compiles a callee once more: ``policy.FLAG``).
 numba links the code of every callee into its caller and optimises and compiles it there again, so
-each layer of the policy (steps, advance, attempt, newton, each op that is not inlined) costs again
-what it calls, 2-4 s of the first run each: a function Python does not call has no Python wrapper
-(compiled, and linked into each caller), none has a C wrapper (``_compiler``).
+each layer of the policy (steps, advance, attempt, newton) cost again all it called, the element
+loop among it, 3-5 s of the first run each: the layers, a string's evaluation (``_assemble``), its
+Newton increment and its rows at the state call each other by address (``CALLS``,
+``cablefem.compiled.calls``), each compiled once, its address in the ``calls`` of the ``Problem``
+and ``Group`` (``fill_calls``). A function Python does not call has no Python wrapper, none has a C
+wrapper (``_compiler``).
 """
 
 import hashlib
@@ -35,11 +38,11 @@ from collections import namedtuple
 from types import FunctionType, ModuleType
 
 import numpy as np
-from numba import njit
+from numba import njit, types
 from numba.typed import List
 from numba import uint64 as _index  # an unsigned index: no wrap-around fix-up (cablefem.compiled.banded)
 
-from cablefem.compiled import kernels
+from cablefem.compiled import calls, kernels
 from cablefem.compiled.banded import lu_factor, lu_solve
 from cablefem.compiled.seabed import PLANE, project
 from cablefem.dynamics import policy
@@ -64,19 +67,30 @@ FRACTIONS = 2 ** DEPTH
 #: end of the attempt (2, 3); its junction ends, (2, 3) rows of (band row, junction, node), -1 where
 #: unused, the columns Z (n, 6) of K^-1 there, their end stiffness S (6, 6) and the string's own step
 #: there yE (6,); the last balance's fairlead and anchor rows and what the reactions add to them
-#: (2, 2, 3) (``Integrator.balance_rows``)
+#: (2, 2, 3) (``Integrator.balance_rows``); the addresses of the functions its ops call (``CALLS``)
 Problem = namedtuple("Problem", "settings mesh bed water pts work projector free_nodes interior free_order all_elements "
                                 "end_elements anchor_node fairlead_node scale increment_scale EA "
                                 "X V A memory prediction rows X1 Xe Ve Ae guess base "
                                 "rhs step original band lu ipiv multipliers base_full base_reduced keeps commits "
                                 "clock factors scheme counters ends fractions target junction_ends Z S yE "
-                                "balance_rows")
+                                "balance_rows calls")
 #: the strings stepped together: the policy's settings, the strings (numba's typed List of ``Problem``:
 #: ``strings_list``), the number of junctions, their step dq (3 J,), the string and node whose predictor
 #: places each junction (J, 2) and that place (J, 3), the junctions' balance (J, 3), the group's
 #: residual scale, and scratch of the small solves: the junctions' system (3 J, 3 J), a string's end
-#: columns ZE and their inverse's work (6, 6), a column and a correction mu (6,)
-Group = namedtuple("Group", "settings strings junctions dq leaders at balance scale system ZE work column mu")
+#: columns ZE and their inverse's work (6, 6), a column and a correction mu (6,); the addresses of the
+#: functions its ops call (``CALLS``)
+Group = namedtuple("Group", "settings strings junctions dq leaders at balance scale system ZE work column mu calls")
+
+#: what a ``Problem`` or ``Group`` calls by address (``cablefem.compiled.calls``: compiled once, not again in each
+#: caller), at which slot of its ``calls``, with the types of the arguments after the first: the policy's layers
+#: on the prob the policy steps, and a string's evaluation, its Newton increment and its rows at its state
+CALLS = {"newton": (0, (types.boolean, types.int64)), "attempt": (1, (types.float64,)),
+         "advance": (2, (types.int64, types.float64, types.float64)),
+         "_assemble": (3, (types.boolean, types.boolean, types.int64[::1])), "_increment": (4, (types.boolean,)),
+         "_state_rows": (5, ())}
+#: the policy's layers among them, called on the prob the policy steps (a line's ``Problem`` or a ``Group``)
+LAYERS = ("newton", "attempt", "advance")
 
 @njit(cache=True)
 def _new_strings(first):
@@ -240,6 +254,19 @@ def _increment(p, refactor):
     return size
 
 
+@njit(cache=True, _nrt=False, no_cpython_wrapper=True, no_cfunc_wrapper=True)
+def _state_rows(p):
+    """String p's rows M A + G at its state over its end elements (the reactions of a scheme whose
+    rows are not the state's, ``_forces``), uncounted."""
+    return _assemble_at(p, p.X, p.V, p.A, p.clock[0].t, policy.FLAG[0], policy.FLAG[0], p.end_elements, p.rows)
+
+
+#: the string's functions its ops call by address (``CALLS``); ``_assemble_call`` per scheme (``bound``)
+_assemble_call = None
+_increment_call = calls.by_address(_increment, CALLS["_increment"][1], CALLS["_increment"][0])
+_state_rows_call = calls.by_address(_state_rows, CALLS["_state_rows"][1], CALLS["_state_rows"][0])
+
+
 @njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def _columns(p, g):
     """The columns Z of string p's K^-1 at its junction ends and their end stiffness S = Z_E^-1, from
@@ -280,7 +307,7 @@ def _joined(p):
 # (a line alone: ``prob`` is its ``Problem``; inlined into the compiled policy)
 @njit(cache=True, inline="always", _nrt=False)
 def evaluate(p, tangent, held):
-    return _assemble(p, tangent, held, p.all_elements)
+    return _assemble_call(p, tangent, held, p.all_elements)
 
 
 @njit(cache=True, inline="always", _nrt=False)
@@ -293,7 +320,7 @@ def finish(p):
     keeps = p.commits[0][0].shape[0] > 0 or p.commits[1][0].shape[0] > 0
     if not keeps and not ROWS_AT_STATE:
         return 0
-    return _assemble(p, policy.FLAG[0], policy.FLAG[0], p.all_elements if keeps else p.end_elements)
+    return _assemble_call(p, policy.FLAG[0], policy.FLAG[0], p.all_elements if keeps else p.end_elements)
 
 
 @njit(cache=True, inline="always", _nrt=False)
@@ -314,7 +341,7 @@ def norm(p):
 
 @njit(cache=True, inline="always", _nrt=False)
 def increment(p, refactor):
-    return _increment(p, refactor)
+    return _increment_call(p, refactor)
 
 
 @njit(cache=True, inline="always", _nrt=False)
@@ -527,8 +554,7 @@ def _forces(p, out):
     uncounted (as ``Integrator.reactions``). Returns the projection's status (0, or the points the
     walk did not place)."""
     if not ROWS_AT_STATE:
-        lost = _assemble_at(p, p.X, p.V, p.A, p.clock[0].t, policy.FLAG[0], policy.FLAG[0], p.end_elements,
-                            p.rows)
+        lost = _state_rows_call(p)
         if lost != 0:
             return lost
     lagged = ROWS_AT_STATE and p.clock[0].t_balance == p.clock[0].t_eval  # the rows are the last balance
@@ -646,7 +672,7 @@ def group_increment(g, refactor):
     group's increment tolerance (NaN: singular)."""
     for k in range(len(g.strings)):
         p = g.strings[k]
-        largest = _increment(p, refactor)
+        largest = _increment_call(p, refactor)
         if largest != largest:
             return largest
         if _joined(p):
@@ -902,12 +928,34 @@ def bound(scheme):
         function.__qualname__ = f"{tag}.{name}"
         options = {key: value for key, value in original.targetoptions.items() if key != "nopython"}
         namespace[name] = njit(cache=True, **options)(function)
+        if name == "_assemble":
+            namespace["_assemble_call"] = calls.by_address(namespace[name], CALLS[name][1], CALLS[name][0])
     functions = {}
     for kind, prefix in (("line", ""), ("group", "group_")):
         ops = ModuleType(f"{__name__}.{tag}.{kind}")
         for name in OPS:
             setattr(ops, name, namespace[prefix + name])
-        functions[kind] = policy.bind(ops, compile=_compiler(kind), name=f"{kind}_{tag}")
-        ops.attempt = functions[kind]["attempt"]
+        functions[kind] = policy.bind(ops, compile=_compiler(kind), name=f"{kind}_{tag}", link=_link)
+        ops.attempt = _link("attempt", functions[kind]["attempt"])
+        functions[kind].update(_assemble=namespace["_assemble"], _increment=_increment,
+                               _state_rows=None if scheme.rows_at_state else _state_rows)  # None: not called
     _BOUND[tag] = functions
     return functions
+
+
+def _link(name, function):
+    """What the policy's functions call in place of its layer ``name`` (``policy.bind``): ``function``
+    by address (``CALLS``)."""
+    if name not in LAYERS:
+        return function
+    slot, rest = CALLS[name]
+    return calls.by_address(function, rest, slot)
+
+
+def fill_calls(functions, prob, string, table):
+    """Write into ``table`` (the ``calls`` of ``prob`` and of its strings) the addresses of ``functions``
+    (a kind's of ``bound``) that they call (``CALLS``; None: not called), compiled or loaded for their types: the layers
+    for ``prob`` (a line's ``Problem`` or a ``Group``), the rest for ``string`` (a string's ``Problem``)."""
+    for name, (slot, rest) in CALLS.items():
+        if functions[name] is not None:
+            table[slot] = calls.address(functions[name], calls.signature(prob if name in LAYERS else string, rest))

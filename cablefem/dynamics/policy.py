@@ -384,10 +384,12 @@ def steps(prob, times, forces):
 FUNCTIONS = ("newton", "attempt", "advance", "steps")
 
 
-def bind(ops_module, compile=None, name=""):
+def bind(ops_module, compile=None, name="", link=None):
     """The policy's functions (a dict by name) calling ``ops_module``; ``compile``: a decorator to
     apply to each (numba's njit), with ``name`` prefixed to their qualified names so that each
-    compiled set has its own on-disk cache."""
+    compiled set has its own on-disk cache; ``link(name, function)``: what the functions after it
+    call in place of each (the compiled steps call their layers by address,
+    ``cablefem.compiled.calls``), by default the function itself."""
     namespace = dict(globals())
     namespace["ops"] = ops_module
     bound = {}
@@ -397,5 +399,5 @@ def bind(ops_module, compile=None, name=""):
         function.__qualname__ = f"{name}.{function_name}" if name else function_name
         function.__doc__ = original.__doc__
         bound[function_name] = compile(function) if compile else function
-        namespace[function_name] = bound[function_name]
+        namespace[function_name] = link(function_name, bound[function_name]) if link else bound[function_name]
     return bound
