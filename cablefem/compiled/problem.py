@@ -6,11 +6,13 @@ import numpy as np
 
 from cablefem.compiled import kernels
 from cablefem.compiled.seabed import GRID, PLANE, TRIANGULATED, Projector
-from cablefem.compiled.steps import CALLS, FRACTIONS, Group, Problem, bound, fill_calls, strings_list
+from cablefem.compiled.steps import FRACTIONS, SLOTS, Group, Problem, bound, fill_calls, strings_list
 
 #: adaptive steps in the compiled loop end on this many even splits of an output interval (smaller
 #: ones go on in Python, where the ends are placed anywhere)
 ADAPTIVE_PARTS = 64
+#: the times and forces of an attempt's call (``Packer.attempt``), which has none
+NO_TIMES, NO_FORCES = np.zeros(0), np.zeros((0, 1, 2, 3))
 from cablefem.dynamics import policy
 from cablefem.geometry import DepthGrid, TriangulatedSurface
 from cablefem.geometry import _walk_jit as walk
@@ -148,7 +150,7 @@ class Packer:
                         np.zeros((3 * J, 3 * J)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros(6), np.zeros(6))
         self.junctions = J
         #: the addresses of what the compiled steps call (``steps.CALLS``), shared by every Problem and Group
-        self.calls = np.zeros(len(CALLS), dtype=np.int64)
+        self.calls = np.zeros(SLOTS, dtype=np.int64)
         self.called = False
 
     @classmethod
@@ -180,7 +182,7 @@ class Packer:
         prob = self.problems[0] if self.kind == "line" else Group(self.settings, strings_list(self.problems),
                                                                    self.junctions, *self.scratch, self.calls)
         if not self.called:  # once: the addresses, for the types of these (``steps.fill_calls``)
-            fill_calls(self.functions, prob, self.problems[0], self.calls)
+            fill_calls(self.functions, prob, self.problems, self.calls)
             self.called = True
         return prob
 
@@ -194,7 +196,7 @@ class Packer:
         ``forces`` (m, strings, 2, 3). Returns (status, k, the size of the attempt that stopped)."""
         times = np.asarray(times, dtype=float)
         prob = self.pack(self.ends(times))
-        status, k = self.functions["steps"](prob, times, forces)
+        status, k = self.functions["entry"](prob, times, forces, 0.0)
         self.finish()
         return status, k, float(self.problems[0].clock[0]["stopped"])
 
@@ -208,6 +210,6 @@ class Packer:
                           for string in self.strings])
         for each in self.problems:
             each.target[:] = each.ends[0]
-        outcome = self.functions["attempt"](prob, t1 - t)
+        outcome, _ = self.functions["entry"](prob, NO_TIMES, NO_FORCES, t1 - t)
         self.finish()
         return outcome

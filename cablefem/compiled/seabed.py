@@ -7,6 +7,7 @@ and the step goes on in Python, whose search finds it.
 
 from collections import namedtuple
 
+import numpy as np
 from numba import njit
 
 from cablefem.dynamics import policy
@@ -45,8 +46,8 @@ def project(proj, X1, mesh, bed, derivatives):
         _grid_project(xyz, proj.gx, proj.gy, proj.gz, policy.FLAG[1], out)
     else:
         mode = walk.EVERYTHING if derivatives else walk.GAP_AND_DIRECTION
-        lost = walk.project(xyz, proj.surface, proj.start, proj.typical, WALK_STEPS, policy.FLAG[1], mode,
-                            proj.result)
+        lost = walk.project(xyz, proj.surface, proj.start, proj.typical, np.int64(WALK_STEPS), policy.FLAG[1], mode,
+                            proj.result)  # the types of TriangulatedSurface's calls: one compilation serves both
         if lost != 0:
             return lost
         start, result = proj.start, proj.result

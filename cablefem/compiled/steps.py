@@ -27,9 +27,11 @@ numba links the code of every callee into its caller and optimises and compiles 
 each layer of the policy (steps, advance, attempt, newton) cost again all it called, the element
 loop among it, 3-5 s of the first run each: the layers, a string's evaluation (``_assemble``), its
 Newton increment and its rows at the state call each other by address (``CALLS``,
-``cablefem.compiled.calls``), each compiled once, its address in the ``calls`` of the ``Problem``
-and ``Group`` (``fill_calls``). A function Python does not call has no Python wrapper, none has a C
-wrapper (``_compiler``).
+``cablefem.compiled.calls``), and so does a string's evaluation call the element loop, the seabed's
+projection and the node loads (``THROUGH``): each compiled once, its address in the ``calls`` of
+the ``Problem`` and ``Group`` (``fill_calls``), the projection and the node loads only for a scene
+that has them. Python calls one function (``_entry``: numba's Python wrapper unboxes the ``Problem``
+in code as large as a layer's), the others have no Python wrapper, none has a C wrapper.
 """
 
 import hashlib
@@ -88,9 +90,71 @@ Group = namedtuple("Group", "settings strings junctions dq leaders at balance sc
 CALLS = {"newton": (0, (types.boolean, types.int64)), "attempt": (1, (types.float64,)),
          "advance": (2, (types.int64, types.float64, types.float64)),
          "_assemble": (3, (types.boolean, types.boolean, types.int64[::1])), "_increment": (4, (types.boolean,)),
-         "_state_rows": (5, ())}
+         "_state_rows": (5, ()), "steps": (6, (types.float64[::1], types.float64[:, :, :, ::1]))}
 #: the policy's layers among them, called on the prob the policy steps (a line's ``Problem`` or a ``Group``)
-LAYERS = ("newton", "attempt", "advance")
+LAYERS = ("newton", "attempt", "advance", "steps")
+
+
+def _state(p):
+    """The type of a state (X, V, A, t) of string p (a ``Problem``'s numba type)."""
+    rows = p.types[p.fields.index("X")]
+    return types.Tuple((rows, rows, rows, types.float64))
+
+
+def _field(p, name):
+    return p.types[p.fields.index(name)]
+
+
+_BAND = types.Array(types.float64, 2, "F")  # the band as the assembly writes it (``_evaluate_at``)
+_FACTORS = types.UniTuple(types.float64, 3)
+
+
+def _assemble_types(p):
+    """What ``kernels.assemble`` takes from string p (``_evaluate_at``)."""
+    return (_field(p, "mesh"), _field(p, "bed"), _field(p, "water"), _field(p, "pts"), _field(p, "work"), _state(p),
+            _FACTORS, types.boolean, types.boolean, _field(p, "X"), _BAND, _field(p, "all_elements"))
+
+
+def _nodes_types(p):
+    """What ``kernels.assemble_nodes`` takes from string p (``_evaluate_at``)."""
+    return (_field(p, "mesh"), _field(p, "water"), _field(p, "pts"), _field(p, "work"), _state(p), _FACTORS,
+            types.boolean, _field(p, "X"), _BAND)
+
+
+def _subtract_types(p):
+    """What ``kernels.subtract_node_loads`` takes from string p (``_forces``)."""
+    return (_field(p, "mesh"), _field(p, "water"), _field(p, "pts"), _field(p, "work"), _state(p), types.int64,
+            types.float64[::1])
+
+
+def _project_types(p):
+    """What ``seabed.project`` takes from string p (``_evaluate_at``)."""
+    return _field(p, "projector"), _field(p, "X"), _field(p, "mesh"), _field(p, "bed"), types.boolean
+
+
+def _with_nodes(p):
+    return p.mesh.nodes.shape[0] > 0
+
+
+def _on_seabed(p):
+    return p.projector.kind != PLANE
+
+
+#: what a string's ``Problem`` calls by address with the arguments it names (``calls.through``): its slot,
+#: the types of the arguments, and whether a string needs it (its address is written, and the function
+#: compiled, only where one of the group's does)
+THROUGH = {"assemble": (7, _assemble_types, None), "assemble_nodes": (8, _nodes_types, _with_nodes),
+           "subtract_node_loads": (9, _subtract_types, _with_nodes), "project": (10, _project_types, _on_seabed)}
+THROUGH_FUNCTIONS = {"assemble": kernels.assemble, "assemble_nodes": kernels.assemble_nodes,
+                     "subtract_node_loads": kernels.subtract_node_loads, "project": project}
+SLOTS = len(CALLS) + len(THROUGH)
+
+_assemble_kernel = calls.through(kernels.assemble, _assemble_types, THROUGH["assemble"][0])
+_nodes_kernel = calls.through(kernels.assemble_nodes, _nodes_types, THROUGH["assemble_nodes"][0], types.none)
+_subtract_kernel = calls.through(kernels.subtract_node_loads, _subtract_types, THROUGH["subtract_node_loads"][0],
+                                 types.none)
+_project_kernel = calls.through(project, _project_types, THROUGH["project"][0], types.int64)
+
 
 @njit(cache=True)
 def _new_strings(first):
@@ -199,7 +263,7 @@ def _assemble_at(p, X, V, A, time, tangent, held, elements, rows):
     first unless it is a plane. Returns the projection's status (0, or the points the walk did not
     place)."""
     if p.projector.kind != PLANE:
-        lost = project(p.projector, X, p.mesh, p.bed, tangent)
+        lost = _project_kernel(p, (p.projector, X, p.mesh, p.bed, tangent))
         if lost != 0:
             return lost
     factors = (p.clock[0].v_x, p.clock[0].a_x, p.clock[0].h)  # h: loads whose history evolves in time
@@ -209,10 +273,10 @@ def _assemble_at(p, X, V, A, time, tangent, held, elements, rows):
     rows[:] = 0.0
     if tangent:
         band2.T[:] = 0.0  # the contiguous (nb, ld) view: a memset, not a strided walk
-    kernels.assemble(p.mesh, p.bed, p.water, p.pts, p.work, (X, V, A, time), factors, tangent, held, rows, band2,
-                     elements)
+    _assemble_kernel(p, (p.mesh, p.bed, p.water, p.pts, p.work, (X, V, A, time), factors, tangent, held, rows, band2,
+                         elements))
     if p.mesh.nodes.shape[0]:
-        kernels.assemble_nodes(p.mesh, p.water, p.pts, p.work, (X, V, A, time), factors, tangent, rows, band2)
+        _nodes_kernel(p, (p.mesh, p.water, p.pts, p.work, (X, V, A, time), factors, tangent, rows, band2))
     return 0
 
 
@@ -563,8 +627,8 @@ def _forces(p, out):
         out[1, a] = -p.rows[p.anchor_node, a] - (p.balance_rows[1, 1, a] if lagged else 0.0)
     if p.mesh.nodes.shape[0]:  # a point riding on an end: the line's own force leaves its load out
         state = (p.X, p.V, p.A, p.clock[0].t)
-        kernels.subtract_node_loads(p.mesh, p.water, p.pts, p.work, state, p.fairlead_node, out[0])
-        kernels.subtract_node_loads(p.mesh, p.water, p.pts, p.work, state, p.anchor_node, out[1])
+        _subtract_kernel(p, (p.mesh, p.water, p.pts, p.work, state, p.fairlead_node, out[0]))
+        _subtract_kernel(p, (p.mesh, p.water, p.pts, p.work, state, p.anchor_node, out[1]))
     return 0
 
 
@@ -894,20 +958,27 @@ def _tag(scheme):
     return "".join(c if c.isalnum() else "_" for c in scheme.name) + "_" + digest.hexdigest()[:10]
 
 
-#: the policy's functions that Python calls (``cablefem.compiled.problem.Packer``): only they get
-#: numba's Python wrapper
-CALLED_FROM_PYTHON = ("attempt", "steps")
+_attempt_call = _steps_call = None  # bound per scheme and kind (``bound``)
+
+
+def _entry(prob, times, forces, h):
+    """Python's one way into the compiled policy: with h > 0 one attempt of size h (``policy.attempt``;
+    its outcome, 0), else steps to ``times`` (``policy.steps``). One function with numba's Python
+    wrapper, whose unboxing of the ``Problem`` or ``Group`` is as large as a layer: it was compiled
+    for ``attempt`` and ``steps`` each."""
+    if h > 0.0:
+        return _attempt_call(prob, h), 0
+    return _steps_call(prob, times, forces)
 
 
 def _compiler(kind):
     """numba's njit for the policy's functions on a ``kind`` ("line", "group"): numba's runtime only
     on a group (its strings' typed List; a line's ``Problem`` holds arrays Python owns, and with the
     runtime every op copying it counts references to its ~50 arrays: 15 s more compilation of the
-    first run), a Python wrapper only where Python calls, and no C wrapper (nothing takes the
-    policy's functions as first-class values; the module's docstring, "Compile time")."""
+    first run), no Python wrapper (Python calls them through ``_entry``) and no C wrapper (the
+    module's docstring, "Compile time")."""
     def compile(function):
-        return njit(cache=True, _nrt=kind == "group", no_cpython_wrapper=function.__name__ not in CALLED_FROM_PYTHON,
-                    no_cfunc_wrapper=True)(function)
+        return njit(cache=True, _nrt=kind == "group", no_cpython_wrapper=True, no_cfunc_wrapper=True)(function)
     return compile
 
 
@@ -937,6 +1008,10 @@ def bound(scheme):
             setattr(ops, name, namespace[prefix + name])
         functions[kind] = policy.bind(ops, compile=_compiler(kind), name=f"{kind}_{tag}", link=_link)
         ops.attempt = _link("attempt", functions[kind]["attempt"])
+        entry = {"_attempt_call": ops.attempt, "_steps_call": _link("steps", functions[kind]["steps"])}
+        function = FunctionType(_entry.__code__, dict(vars(module), **entry), "entry")
+        function.__qualname__ = f"{kind}_{tag}.entry"
+        functions[kind]["entry"] = njit(cache=True, _nrt=kind == "group", no_cfunc_wrapper=True)(function)
         functions[kind].update(_assemble=namespace["_assemble"], _increment=_increment,
                                _state_rows=None if scheme.rows_at_state else _state_rows)  # None: not called
     _BOUND[tag] = functions
@@ -952,10 +1027,16 @@ def _link(name, function):
     return calls.by_address(function, rest, slot)
 
 
-def fill_calls(functions, prob, string, table):
+def fill_calls(functions, prob, strings, table):
     """Write into ``table`` (the ``calls`` of ``prob`` and of its strings) the addresses of ``functions``
-    (a kind's of ``bound``) that they call (``CALLS``; None: not called), compiled or loaded for their types: the layers
-    for ``prob`` (a line's ``Problem`` or a ``Group``), the rest for ``string`` (a string's ``Problem``)."""
+    (a kind's of ``bound``) that they call (``CALLS``; None: not called), compiled or loaded for their
+    types: the layers for ``prob`` (a line's ``Problem`` or a ``Group``), the rest for the ``strings`` (their ``Problem``s, one
+    type), and what they call with the arguments it names (``THROUGH``), where one needs it."""
+    string = calls.type_of(strings[0])
+    whole = calls.type_of(prob) if prob is not strings[0] else string
     for name, (slot, rest) in CALLS.items():
         if functions[name] is not None:
-            table[slot] = calls.address(functions[name], calls.signature(prob if name in LAYERS else string, rest))
+            table[slot] = calls.address(functions[name], (whole if name in LAYERS else string,) + rest)
+    for name, (slot, types_of, needed) in THROUGH.items():
+        if needed is None or any(needed(p) for p in strings):
+            table[slot] = calls.address(THROUGH_FUNCTIONS[name], types_of(string))

@@ -75,9 +75,10 @@ def _most_violated(s, t):
 @njit(**JIT)
 def project(xyz, surface, start, typical, steps, search, mode, result):
     """Locate points xyz (3, n) [m] on ``surface`` (a ``Surface``) from the ``Start`` of a previous
-    call, walking at most ``steps`` steps, and evaluate them into ``result.out`` (19, n). The three
-    may be plain tuples of their fields: numba unboxes a named tuple passed from Python at about
-    twice a plain tuple's cost (~0.5 us more each, measured), so Python callers pass plain ones.
+    call, walking at most ``steps`` steps, and evaluate them into ``result.out`` (19, n). Its Python
+    and compiled callers pass the same types (the named tuples, ``steps`` not a literal): numba
+    compiles it once for both, where plain tuples from Python (0.5 us less to unbox each) compiled
+    it twice (2.5 s more of a first run).
 
     With ``search``, writes each point's triangle (or -1: not placed, see the module docstring;
     also for points ``start.unheld`` or that moved farther than ``surface.size`` [m] of their

@@ -171,16 +171,16 @@ class TriangulatedSurface(PrismSearch, Seabed):
         n = len(points)
         same = [state for state in self._states if len(state[0]) == n]
         triangle, sth, out = np.empty(n, dtype=np.int64), np.empty((3, n)), np.empty((walk.OUTPUTS, n))
-        result = (triangle, sth, out)  # _walk_jit.project's Result, Surface and Start as plain tuples (see there)
+        result = walk.Result(triangle, sth, out)
         surface = self._walk_tables()
         lost = -1
         if len(same) == 1:  # one line on this seabed: the kernel sees whether it moved far
             state = same[0]
-            start = self._walk_from(state, points)
+            start = walk.Start(*self._walk_from(state, points))
             lost = walk.project(xyz, surface, start, self._typical, WALK_STEPS, True, mode, result)
         if lost < 0:  # several lines, or one that moved far: start as _located does
             state = self._recall(points)[0]
-            start = self._walk_from(state, points)
+            start = walk.Start(*self._walk_from(state, points))
             lost = walk.project(xyz, surface, start, np.inf, WALK_STEPS, True, mode, result)
         beyond = np.zeros(n, dtype=bool)
         if lost:  # the numpy search from the same start, for the points the walk left
@@ -206,7 +206,7 @@ class TriangulatedSurface(PrismSearch, Seabed):
         # copies: the caller's walk moves them on
         start = walk.Start(np.array(origin, dtype=float), np.array(triangle, dtype=np.int64),
                            np.array(h, dtype=float), np.array(unheld, dtype=bool))
-        return walk.Surface(*self._walk_tables()), self._typical, start
+        return self._walk_tables(), self._typical, start
 
     def _walk_from(self, state, points):
         """Where the compiled walk starts for points (n, 3) [m], the fields of a ``_walk_jit.Start``:
@@ -214,15 +214,16 @@ class TriangulatedSurface(PrismSearch, Seabed):
         ``state``, or, without one, cold from the nearest centroids with no height to start from."""
         if state is None:
             n = len(points)
-            return points.T, self._nearest(points, 1)[:, 0], np.full(n, np.nan), np.zeros(n, dtype=bool)
+            return (points.T, np.ascontiguousarray(self._nearest(points, 1)[:, 0]), np.full(n, np.nan),
+                    np.zeros(n, dtype=bool))
         return _component_first(state), state[1], state[3], state[2]
 
     def _walk_tables(self):
-        """The surface as the compiled walk reads it, the fields of a ``_walk_jit.Surface`` (the warm
-        table's SAFE row made contiguous); built once."""
+        """The surface as the compiled walk reads it, a ``_walk_jit.Surface`` (the warm table's SAFE row
+        made contiguous); built once."""
         if self._walk_surface is None:
             safe = np.ascontiguousarray(self._warm_tables()[vn.W_SAFE])
-            self._walk_surface = (self._rows, self._across, safe, self._size)
+            self._walk_surface = walk.Surface(self._rows, self._across, safe, self._size)
         return self._walk_surface
 
     def walk_end(self, start):
