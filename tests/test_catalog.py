@@ -9,6 +9,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from cablefem.compiled import kernels
 from cablefem.compiled.evaluator import FusedEvaluator, pack_params
 from cablefem.geometry import Plane
 from cablefem.loads import catalog
@@ -225,11 +226,13 @@ def test_the_point_loops_call_only_the_lines_loads_and_the_others_would_add_noth
     fused = FusedEvaluator.for_system(system, system.props["mass"])
     layout, pts = catalog.layout(), fused.points
     names = {name, *catalog.spec(name).reads}
-    np.testing.assert_array_equal(pts.full_loads, [spec.name in names for spec in layout.full])
-    np.testing.assert_array_equal(pts.reduced_loads, [spec.name in names for spec in layout.reduced])
+    np.testing.assert_array_equal(pts.full_calls != 0, [spec.name in names for spec in layout.full])
+    np.testing.assert_array_equal(pts.reduced_calls != 0, [spec.name in names for spec in layout.reduced])
     rows, band = (x.copy() for x in fused.evaluate(X, V, A, 150.0, 2.2e4, h=H))
-    # every kernel called, as before the masks: a load the line has not returns at its flag
-    fused.points = pts._replace(full_loads=np.ones_like(pts.full_loads), reduced_loads=np.ones_like(pts.reduced_loads))
+    # every kernel called, each compiled: a load the line has not returns at its flag
+    fused.points = pts._replace(full_calls=kernels.point_calls(pts.params, layout.full, kernels.FULL_TYPES, every=True),
+                                reduced_calls=kernels.point_calls(pts.params, layout.reduced, kernels.REDUCED_TYPES,
+                                                                  every=True))
     every_rows, every_band = fused.evaluate(X, V, A, 150.0, 2.2e4, h=H)
     assert np.array_equal(rows, every_rows) and np.array_equal(band, every_band)
     # only a load that keeps history is committed (the soil's at the full points, the rope's at the reduced)

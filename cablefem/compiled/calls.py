@@ -27,12 +27,16 @@ from numba.core import cgutils, types
 from numba.extending import intrinsic
 
 
-def address(dispatcher, argtypes):
+def address(dispatcher, argtypes, restype=None):
     """The address of ``dispatcher``'s compiled code for ``argtypes`` (numba types), compiled or loaded
-    from numba's cache first."""
+    from numba's cache first; ``restype``: what its callers were compiled to expect it to return
+    (a TypeError if it does not)."""
     argtypes = tuple(argtypes)
     dispatcher.compile(argtypes)
     result = dispatcher.overloads[argtypes]
+    if restype is not None and result.signature.return_type != restype:
+        raise TypeError(f"{dispatcher.__name__} returns {result.signature.return_type}, its callers by address "
+                        f"expect {restype}")
     return result.library.get_pointer_to_function(result.fndesc.llvm_func_name)
 
 
@@ -54,6 +58,11 @@ def _call(context, builder, prob, value, slot, restype, argtypes, arguments):
     field = prob.fields.index("calls")
     calls = context.make_array(prob.types[field])(context, builder, value=builder.extract_value(value, field))
     where = builder.load(builder.gep(calls.data, [ir.Constant(ir.IntType(64), slot)]))
+    return _call_at(context, builder, where, restype, argtypes, arguments)
+
+
+def _call_at(context, builder, where, restype, argtypes, arguments):
+    """Call the code at address ``where`` (an int64 value) with ``arguments``, propagating its exception."""
     function = context.call_conv.get_function_type(restype, argtypes)
     pointer = builder.inttoptr(where, function.as_pointer())
     status, result = context.call_conv.call_function(builder, pointer, restype, argtypes, arguments)
@@ -114,4 +123,21 @@ def through(dispatcher, types_of, slot, restype=None):
         return returns(prob, types.Tuple(argtypes)), codegen
 
     call.__name__ = call.__qualname__ = f"{dispatcher.__name__}_through"
+    return intrinsic(call)
+
+
+def at(argtypes, restype):
+    """A compiled function (a numba intrinsic) ``call(where, arguments)`` that calls the code at the
+    address ``where`` (int64) with ``arguments``, converted to ``argtypes``, returning ``restype``: a
+    table of functions of one signature (the loads' point kernels, ``cablefem.compiled.kernels``),
+    each compiled where Python writes its address (``address``, with ``restype``)."""
+    argtypes = tuple(argtypes)
+
+    def call(typingctx, where, arguments):
+        def codegen(context, builder, sig, values):
+            unpacked = [builder.extract_value(values[1], k) for k in range(len(argtypes))]
+            return _call_at(context, builder, values[0], restype, argtypes, unpacked)
+
+        return restype(types.int64, types.Tuple(argtypes)), codegen
+
     return intrinsic(call)

@@ -7,9 +7,10 @@ quadrature points, straight into LAPACK's banded storage with the unknowns order
 At each point it fills a context record (``CONTEXT``: position, its derivatives, velocity,
 acceleration, the unit tangent, the seabed's projection, the step's factors, and each load's named
 scratch) and calls the loads of the point's rule that the line has, in catalog order
-(``full_point``, ``reduced_point``: a loop over the catalog's tuple of point kernels, which numba
-unrolls into direct calls, each behind the line's flag for it: a catalog load a scene does not use
-costs a flag test, not a call). Each load reads its parameters by name from the element's record
+(``full_point``, ``reduced_point``: a loop over the addresses of the catalog's point kernels, 0 for
+a load the line has not, ``cablefem.compiled.calls``: a kernel is compiled once, where a scene has
+its load, and not again inside the loop; a load a scene does not use costs a test, not a call,
+and no compilation). Each load reads its parameters by name from the element's record
 (``p.drag.normal``), works in its own scratch in the context (``ctx.drag.w``; another load's only
 where its spec ``reads`` it: friction reads the contact's ``ctx.contact.normal_force``), writes its
 branch state to the point's state record, reads its holds and its committed history, writes its
@@ -34,12 +35,12 @@ import warnings
 from collections import namedtuple
 
 import numpy as np
-from numba import literal_unroll, njit
+from numba import from_dtype, literal_unroll, njit, types
 from numba import uint64 as _index
 from numba.core.errors import NumbaExperimentalFeatureWarning
 from numba.extending import overload
 
-from cablefem.compiled import progress  # noqa: F401 (a compilation says so on stderr, once)
+from cablefem.compiled import calls, progress  # noqa: F401 (progress: a compilation says so on stderr, once)
 from cablefem.compiled.hermite import CLAMP_SCALE, _add_second, _clamp, _second_kinematics
 from cablefem.loads import catalog
 from cablefem.waves.compiled import NONE as NO_WATER, water_cached
@@ -57,7 +58,8 @@ FULL_RULES, REDUCED_RULES = LAYOUT.full_rules, LAYOUT.reduced_rules
 #: line in waves, the water's elevation above the point, its velocity and acceleration and (with a
 #: tangent) their gradients, and whether the point is below the surface (``cablefem.waves.compiled``,
 #: ``water_at``; a line in still water leaves them alone); which loads of each rule the
-#: line has (``Points.full_loads``, ``reduced_loads``: read from the context, not passed, because
+#: line has, the addresses of their kernels (``Points.full_calls``, ``reduced_calls``; 0: the line has not
+#: that load; read from the context, not passed, because
 #: an argument more per point cost more instructions than the calls it saves); inv_h: 1 / the step's
 #: size [1/s] (0 without a step: statics), for a load whose history evolves in time (``loads.rope``)
 POINT = [("r", "f8", (3,)), ("dr", "f8", (3,)), ("v", "f8", (3,)), ("dv", "f8", (3,)),
@@ -66,7 +68,7 @@ POINT = [("r", "f8", (3,)), ("dr", "f8", (3,)), ("v", "f8", (3,)), ("dv", "f8", 
          ("curved", "?"), ("v_x", "f8"), ("a_x", "f8"), ("inv_h", "f8"), ("jac", "?"), ("held", "?"), ("time", "f8"),
          ("wet", "?"), ("eta", "f8"), ("water_u", "f8", (3,)), ("water_a", "f8", (3,)),
          ("water_du", "f8", (3, 3)), ("water_da", "f8", (3, 3)),
-         ("full_loads", "u1", (len(FULL_KERNELS),)), ("reduced_loads", "u1", (len(REDUCED_KERNELS),)),
+         ("full_calls", "i8", (len(FULL_KERNELS),)), ("reduced_calls", "i8", (len(REDUCED_KERNELS),)),
          ("ddr", "f8", (3,))]  # r'' of a Hermite line with bending (``_second_kinematics``)
 _clash = {name for name, _ in LAYOUT.scratch} & {entry[0] for entry in POINT}
 if _clash:
@@ -77,6 +79,14 @@ CONTEXT = np.dtype(POINT + list(LAYOUT.scratch), align=True)
 OUT = np.dtype([("f", "f8", (3,)), ("A", "f8", (3, 3)), ("B", "f8", (3, 3)), ("N", "f8", (3,)),
                 ("D", "f8", (3, 3)), ("Q", "f8", (3,)), ("E", "f8", (3, 3)), ("F", "f8", (3, 3)),
                 ("G", "f8", (3, 3))], align=True)
+#: what a point kernel takes, as numba types: the context, the element's parameters, the point's committed
+#: and trial history, branch state and holds, and the output (``point_calls``; full and reduced points)
+FULL_TYPES, REDUCED_TYPES = (tuple(from_dtype(d) for d in (CONTEXT, LAYOUT.params, history, history, state, hold, OUT))
+                             for history, state, hold in ((LAYOUT.full_history, LAYOUT.full_state, LAYOUT.full_hold),
+                                                          (LAYOUT.reduced_history, LAYOUT.reduced_state,
+                                                           LAYOUT.reduced_hold)))
+#: the calls of the point kernels by address (``point_calls``), one function of each signature
+_full_kernel, _reduced_kernel = calls.at(FULL_TYPES, types.none), calls.at(REDUCED_TYPES, types.none)
 
 #: a line's mesh as the loop reads it: element DOFs (nel, nloc), band positions (N,), basis values,
 #: derivatives and weights at the full and reduced points, mass per length (nel,), band widths, the
@@ -98,7 +108,7 @@ Bed = namedtuple("Bed", "plane gap normal grad_gap dnormal")
 #: (``cablefem.fem.clamp.reaction_moments``). Not in ``Mesh``: the per-point calls that take the mesh
 #: copy each of its arrays, which lines without bending would pay for
 Points = namedtuple("Points", "params full_old full_new full_state full_hold "
-                              "reduced_old reduced_new reduced_state reduced_hold nodes full_loads reduced_loads "
+                              "reduced_old reduced_new reduced_state reduced_hold nodes full_calls reduced_calls "
                               "ddphi clamp")
 #: scratch: a context (the loads' scratch in it) and an output record, an element's rows (nloc, 3)
 #: and matrix (nloc, 3, nloc, 3)
@@ -119,13 +129,24 @@ def points(params, history, nq, nr, nodes, ddphi, clamp):
     (full_old, full_new), (reduced_old, reduced_new) = history["full"], history["reduced"]
     return Points(params, full_old, full_new, records(L.full_state, (nel, nq)), records(L.full_hold, (nel, nq)),
                   reduced_old, reduced_new, records(L.reduced_state, (nel, nr)), records(L.reduced_hold, (nel, nr)),
-                  nodes, active(params, L.full), active(params, L.reduced), ddphi, clamp)
+                  nodes, point_calls(params, L.full, FULL_TYPES), point_calls(params, L.reduced, REDUCED_TYPES),
+                  ddphi, clamp)
 
 
 def active(params, specs):
     """Which of ``specs`` the parameter records ``params`` (nel,) hold a load of (their ``active``
     flags, set by ``fused.pack_params``), bool (len(specs),)."""
     return np.array([bool(params[s.name]["active"].any()) for s in specs], dtype=np.bool_)
+
+
+def point_calls(params, specs, argtypes, every=False):
+    """The addresses of the point kernels of ``specs`` that the parameter records ``params`` (nel,)
+    hold a load of (``active``; ``every``: all of them), 0 for the others, int64 (len(specs),):
+    each compiled (or loaded from numba's cache) here, for the point's ``argtypes``
+    (``FULL_TYPES``, ``REDUCED_TYPES``), so a scene compiles the kernels of its loads alone."""
+    has = active(params, specs)
+    return np.array([calls.address(s.kernel, argtypes, types.none) if every or has[k] else 0
+                     for k, s in enumerate(specs)], dtype=np.int64)
 
 
 def work(nloc):
@@ -148,31 +169,27 @@ def _inverse_step(factors):
 
 @njit(cache=True, inline="always", _nrt=False)
 def full_point(ctx, p, old, new, state, hold, out):
-    """The full-point loads of the catalog the line has (``ctx.full_loads``), in order, into
+    """The full-point loads of the catalog the line has (``ctx.full_calls``), in order, into
     ``out`` (f, A, B zeroed first; N, Q, D, E, F, G by ``_second_kinematics`` where they are read)."""
     out.f[:] = 0.0
     if ctx.jac:
         out.A[:, :] = 0.0
         out.B[:, :] = 0.0
-    k = 0
-    for kernel in literal_unroll(FULL_KERNELS):
-        if ctx.full_loads[k]:
-            kernel(ctx, p, old, new, state, hold, out)
-        k += 1
+    for k in range(ctx.full_calls.shape[0]):
+        if ctx.full_calls[k] != 0:
+            _full_kernel(ctx.full_calls[k], (ctx, p, old, new, state, hold, out))
 
 
 @njit(cache=True, _nrt=False)
 def reduced_point(ctx, p, old, new, state, hold, out):
-    """The reduced-point loads of the catalog the line has (``ctx.reduced_loads``), in order, into
+    """The reduced-point loads of the catalog the line has (``ctx.reduced_calls``), in order, into
     ``out`` (N, D zeroed first)."""
     out.N[:] = 0.0
     if ctx.jac:
         out.D[:, :] = 0.0
-    k = 0
-    for kernel in literal_unroll(REDUCED_KERNELS):
-        if ctx.reduced_loads[k]:
-            kernel(ctx, p, old, new, state, hold, out)
-        k += 1
+    for k in range(ctx.reduced_calls.shape[0]):
+        if ctx.reduced_calls[k] != 0:
+            _reduced_kernel(ctx.reduced_calls[k], (ctx, p, old, new, state, hold, out))
 
 
 @njit(cache=True, _nrt=False)
@@ -303,10 +320,10 @@ def assemble(mesh, bed, water, pts, work, state, factors, jac, held, rows, band,
     ctx = work.ctx[0]
     ctx.v_x, ctx.a_x, ctx.inv_h = factors[0], factors[1], inverse_step(factors)
     ctx.jac, ctx.held, ctx.time = jac, held, state[3]
-    for k in range(pts.full_loads.shape[0]):
-        ctx.full_loads[k] = pts.full_loads[k]
-    for k in range(pts.reduced_loads.shape[0]):
-        ctx.reduced_loads[k] = pts.reduced_loads[k]
+    for k in range(pts.full_calls.shape[0]):
+        ctx.full_calls[k] = pts.full_calls[k]
+    for k in range(pts.reduced_calls.shape[0]):
+        ctx.reduced_calls[k] = pts.reduced_calls[k]
     if pts.ddphi.shape[0] > 0 or pts.clamp[0, CLAMP_SCALE] > 0.0 or pts.clamp[1, CLAMP_SCALE] > 0.0:
         _elements(mesh, bed, water, pts, work, state, jac, rows, band, elements, True)
     else:  # the loop compiled without the bending's branches
