@@ -64,6 +64,24 @@ def test_compiled_steps_equal_the_python_steps(order, elements, dt, motion, iter
             assert s1["corrections"] > 0  # ... and the Newton steps solved again on new branches
 
 
+def test_one_compiled_attempt_takes_the_python_attempts_iterations_to_its_state():
+    """One attempt on its own (``Packer.attempt``: the policy's attempt by address, compiled only where
+    Python asks for one, ``steps.fill_calls``) and on the Python ops: the same iterations, the same
+    state to round-off, snap loads on a flat flume floor."""
+    scene = flume_scene("flat", "dynamic", 20, 1, 1.0, 0.05)
+    runs = []
+    for compiled_steps in (True, False):
+        integ = integrator(scene, 0.05, compiled_steps)
+        assert (integ.stepper().packer is not None) == compiled_steps
+        for _ in range(2):
+            integ.targets = integ.ends_at(integ.t + 0.05)  # as the policy's place_ends before an attempt
+            assert integ.attempt(0.05)
+        runs.append((integ.X.copy(), integ.V.copy(), integ.t, integ.statistics()))
+    (X1, V1, t1, s1), (X2, V2, t2, s2) = runs
+    assert t1 == t2 == pytest.approx(0.1) and s1 == s2 and s1["newton_iterations"] >= 2
+    assert np.max(np.abs(X1 - X2)) <= 1e-9 and np.max(np.abs(V1 - V2)) <= 1e-7
+
+
 def test_branch_corrections_save_evaluations_and_keep_the_solution():
     """Snap loads, P1 x 14 at dt 0.16 s: solving a rejected Newton step again on the friction and
     tension branches its trial reached (``Integrator.MAX_CORRECTIONS``) leaves no failed attempt

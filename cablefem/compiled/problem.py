@@ -6,7 +6,7 @@ import numpy as np
 
 from cablefem.compiled import kernels
 from cablefem.compiled.seabed import GRID, PLANE, TRIANGULATED, Projector
-from cablefem.compiled.steps import FRACTIONS, SLOTS, Group, Problem, bound, fill_calls, strings_list
+from cablefem.compiled.steps import CALLS, FRACTIONS, SLOTS, Group, Problem, bound, fill_calls, strings_list
 
 #: adaptive steps in the compiled loop end on this many even splits of an output interval (smaller
 #: ones go on in Python, where the ends are placed anywhere)
@@ -210,6 +210,8 @@ class Packer:
                           for string in self.strings])
         for each in self.problems:
             each.target[:] = each.ends[0]
+        if not self.calls[CALLS["attempt"][0]]:  # the attempt on its own: compiled where Python asks for one
+            fill_calls(self.functions, prob, self.problems, self.calls, attempt=True)
         outcome, _ = self.functions["entry"](prob, NO_TIMES, NO_FORCES, t1 - t)
         self.finish()
         return outcome

@@ -7,12 +7,10 @@ and the step goes on in Python, whose search finds it.
 
 from collections import namedtuple
 
-import numpy as np
 from numba import njit
 
 from cablefem.dynamics import policy
 from cablefem.geometry import _walk_jit as walk
-from cablefem.geometry._search import WALK_STEPS
 from cablefem.geometry.grid import _project as _grid_project
 
 #: seabeds the loop projects itself: a plane (in the kernel), a depth grid, a triangulated surface
@@ -46,8 +44,7 @@ def project(proj, X1, mesh, bed, derivatives):
         _grid_project(xyz, proj.gx, proj.gy, proj.gz, policy.FLAG[1], out)
     else:
         mode = walk.EVERYTHING if derivatives else walk.GAP_AND_DIRECTION
-        lost = walk.project(xyz, proj.surface, proj.start, proj.typical, np.int64(WALK_STEPS), policy.FLAG[1], mode,
-                            proj.result)  # the types of TriangulatedSurface's calls: one compilation serves both
+        lost = walk.project(xyz, proj.surface, proj.start, proj.typical, policy.FLAG[1], mode, proj.result)
         if lost != 0:
             return lost
         start, result = proj.start, proj.result

@@ -25,8 +25,7 @@ string, nor on a line's policy (the small solves' scratch is in the group; the g
 have it for the List), and no literal arguments (each compiles a callee once more: ``policy.FLAG``).
 numba links the code of every callee into its caller and optimises and compiles it there again, so
 each layer of the policy (steps, advance, attempt, newton) cost again all it called, the element
-loop among it, 3-5 s of the first run each: the layers, a string's evaluation (``_assemble``), its
-Newton increment and its rows at the state call each other by address (``CALLS``,
+loop among it, 3-5 s of the first run each: the layers call each other by address (``CALLS``,
 ``cablefem.compiled.calls``), and so does a string's evaluation call the element loop, the seabed's
 projection and the node loads (``THROUGH``): each compiled once, its address in the ``calls`` of
 the ``Problem`` and ``Group`` (``fill_calls``), the projection and the node loads only for a scene
@@ -84,15 +83,17 @@ Problem = namedtuple("Problem", "settings mesh bed water pts work projector free
 #: functions its ops call (``CALLS``)
 Group = namedtuple("Group", "settings strings junctions dq leaders at balance scale system ZE work column mu calls")
 
-#: what a ``Problem`` or ``Group`` calls by address (``cablefem.compiled.calls``: compiled once, not again in each
-#: caller), at which slot of its ``calls``, with the types of the arguments after the first: the policy's layers
-#: on the prob the policy steps, and a string's evaluation, its Newton increment and its rows at its state
-CALLS = {"newton": (0, (types.boolean, types.int64)), "attempt": (1, (types.float64,)),
-         "advance": (2, (types.int64, types.float64, types.float64)),
-         "_assemble": (3, (types.boolean, types.boolean, types.int64[::1])), "_increment": (4, (types.boolean,)),
-         "_state_rows": (5, ()), "steps": (6, (types.float64[::1], types.float64[:, :, :, ::1]))}
-#: the policy's layers among them, called on the prob the policy steps (a line's ``Problem`` or a ``Group``)
-LAYERS = ("newton", "attempt", "advance", "steps")
+#: the policy's layers called by address (``cablefem.compiled.calls``: compiled once, not again in each caller):
+#: the slot of each in the ``calls`` of the prob the policy steps (a line's ``Problem`` or a ``Group``), and
+#: the types of its arguments after the prob. ``newton`` from ``attempt``, ``steps`` and ``attempt`` from
+#: ``_entry``; ``attempt`` and ``advance`` are inlined into their one caller (``INLINED``). Only these: a call
+#: by address copies the ``Problem``'s array descriptors as arguments (~900 words), once an attempt here;
+#: the string's evaluation and Newton increment, once an iteration, are linked into ``newton`` (by address
+#: they cost the steps 2 % more instructions)
+CALLS = {"newton": (0, (types.boolean, types.int64)), "steps": (1, (types.float64[::1], types.float64[:, :, :, ::1])),
+         "attempt": (2, (types.float64,))}
+#: the layers inlined into their one caller: ``advance`` into ``steps``, ``attempt`` into ``advance``
+INLINED = ("advance",)
 
 
 def _state(p):
@@ -143,8 +144,8 @@ def _on_seabed(p):
 #: what a string's ``Problem`` calls by address with the arguments it names (``calls.through``): its slot,
 #: the types of the arguments, and whether a string needs it (its address is written, and the function
 #: compiled, only where one of the group's does)
-THROUGH = {"assemble": (7, _assemble_types, None), "assemble_nodes": (8, _nodes_types, _with_nodes),
-           "subtract_node_loads": (9, _subtract_types, _with_nodes), "project": (10, _project_types, _on_seabed)}
+THROUGH = {"assemble": (3, _assemble_types, None), "assemble_nodes": (4, _nodes_types, _with_nodes),
+           "subtract_node_loads": (5, _subtract_types, _with_nodes), "project": (6, _project_types, _on_seabed)}
 THROUGH_FUNCTIONS = {"assemble": kernels.assemble, "assemble_nodes": kernels.assemble_nodes,
                      "subtract_node_loads": kernels.subtract_node_loads, "project": project}
 SLOTS = len(CALLS) + len(THROUGH)
@@ -318,19 +319,6 @@ def _increment(p, refactor):
     return size
 
 
-@njit(cache=True, _nrt=False, no_cpython_wrapper=True, no_cfunc_wrapper=True)
-def _state_rows(p):
-    """String p's rows M A + G at its state over its end elements (the reactions of a scheme whose
-    rows are not the state's, ``_forces``), uncounted."""
-    return _assemble_at(p, p.X, p.V, p.A, p.clock[0].t, policy.FLAG[0], policy.FLAG[0], p.end_elements, p.rows)
-
-
-#: the string's functions its ops call by address (``CALLS``); ``_assemble_call`` per scheme (``bound``)
-_assemble_call = None
-_increment_call = calls.by_address(_increment, CALLS["_increment"][1], CALLS["_increment"][0])
-_state_rows_call = calls.by_address(_state_rows, CALLS["_state_rows"][1], CALLS["_state_rows"][0])
-
-
 @njit(cache=True, _nrt=False, no_cpython_wrapper=True)
 def _columns(p, g):
     """The columns Z of string p's K^-1 at its junction ends and their end stiffness S = Z_E^-1, from
@@ -371,7 +359,7 @@ def _joined(p):
 # (a line alone: ``prob`` is its ``Problem``; inlined into the compiled policy)
 @njit(cache=True, inline="always", _nrt=False)
 def evaluate(p, tangent, held):
-    return _assemble_call(p, tangent, held, p.all_elements)
+    return _assemble(p, tangent, held, p.all_elements)
 
 
 @njit(cache=True, inline="always", _nrt=False)
@@ -384,7 +372,7 @@ def finish(p):
     keeps = p.commits[0][0].shape[0] > 0 or p.commits[1][0].shape[0] > 0
     if not keeps and not ROWS_AT_STATE:
         return 0
-    return _assemble_call(p, policy.FLAG[0], policy.FLAG[0], p.all_elements if keeps else p.end_elements)
+    return _assemble(p, policy.FLAG[0], policy.FLAG[0], p.all_elements if keeps else p.end_elements)
 
 
 @njit(cache=True, inline="always", _nrt=False)
@@ -405,7 +393,7 @@ def norm(p):
 
 @njit(cache=True, inline="always", _nrt=False)
 def increment(p, refactor):
-    return _increment_call(p, refactor)
+    return _increment(p, refactor)
 
 
 @njit(cache=True, inline="always", _nrt=False)
@@ -618,7 +606,8 @@ def _forces(p, out):
     uncounted (as ``Integrator.reactions``). Returns the projection's status (0, or the points the
     walk did not place)."""
     if not ROWS_AT_STATE:
-        lost = _state_rows_call(p)
+        lost = _assemble_at(p, p.X, p.V, p.A, p.clock[0].t, policy.FLAG[0], policy.FLAG[0], p.end_elements,
+                            p.rows)
         if lost != 0:
             return lost
     lagged = ROWS_AT_STATE and p.clock[0].t_balance == p.clock[0].t_eval  # the rows are the last balance
@@ -736,7 +725,7 @@ def group_increment(g, refactor):
     group's increment tolerance (NaN: singular)."""
     for k in range(len(g.strings)):
         p = g.strings[k]
-        largest = _increment_call(p, refactor)
+        largest = _increment(p, refactor)
         if largest != largest:
             return largest
         if _joined(p):
@@ -975,10 +964,11 @@ def _compiler(kind):
     """numba's njit for the policy's functions on a ``kind`` ("line", "group"): numba's runtime only
     on a group (its strings' typed List; a line's ``Problem`` holds arrays Python owns, and with the
     runtime every op copying it counts references to its ~50 arrays: 15 s more compilation of the
-    first run), no Python wrapper (Python calls them through ``_entry``) and no C wrapper (the
-    module's docstring, "Compile time")."""
+    first run), no Python wrapper (Python calls them through ``_entry``), no C wrapper (the
+    module's docstring, "Compile time"), and ``INLINED`` into their caller."""
     def compile(function):
-        return njit(cache=True, _nrt=kind == "group", no_cpython_wrapper=True, no_cfunc_wrapper=True)(function)
+        return njit(cache=True, _nrt=kind == "group", no_cpython_wrapper=True, no_cfunc_wrapper=True,
+                    inline="always" if function.__name__ in INLINED else "never")(function)
     return compile
 
 
@@ -999,8 +989,6 @@ def bound(scheme):
         function.__qualname__ = f"{tag}.{name}"
         options = {key: value for key, value in original.targetoptions.items() if key != "nopython"}
         namespace[name] = njit(cache=True, **options)(function)
-        if name == "_assemble":
-            namespace["_assemble_call"] = calls.by_address(namespace[name], CALLS[name][1], CALLS[name][0])
     functions = {}
     for kind, prefix in (("line", ""), ("group", "group_")):
         ops = ModuleType(f"{__name__}.{tag}.{kind}")
@@ -1008,35 +996,41 @@ def bound(scheme):
             setattr(ops, name, namespace[prefix + name])
         functions[kind] = policy.bind(ops, compile=_compiler(kind), name=f"{kind}_{tag}", link=_link)
         ops.attempt = _link("attempt", functions[kind]["attempt"])
-        entry = {"_attempt_call": ops.attempt, "_steps_call": _link("steps", functions[kind]["steps"])}
+        slot, rest = CALLS["attempt"]  # compiled on its own only where Python takes one attempt (``fill_calls``)
+        entry = {"_attempt_call": calls.by_address(functions[kind]["attempt"], rest, slot, types.int64),
+                 "_steps_call": _link("steps", functions[kind]["steps"])}
         function = FunctionType(_entry.__code__, dict(vars(module), **entry), "entry")
         function.__qualname__ = f"{kind}_{tag}.entry"
         functions[kind]["entry"] = njit(cache=True, _nrt=kind == "group", no_cfunc_wrapper=True)(function)
-        functions[kind].update(_assemble=namespace["_assemble"], _increment=_increment,
-                               _state_rows=None if scheme.rows_at_state else _state_rows)  # None: not called
     _BOUND[tag] = functions
     return functions
 
 
 def _link(name, function):
     """What the policy's functions call in place of its layer ``name`` (``policy.bind``): ``function``
-    by address (``CALLS``)."""
-    if name not in LAYERS:
+    by address (``CALLS``), or itself where it is inlined (``INLINED``)."""
+    if name in INLINED:
         return function
     slot, rest = CALLS[name]
     return calls.by_address(function, rest, slot)
 
 
-def fill_calls(functions, prob, strings, table):
-    """Write into ``table`` (the ``calls`` of ``prob`` and of its strings) the addresses of ``functions``
-    (a kind's of ``bound``) that they call (``CALLS``; None: not called), compiled or loaded for their
-    types: the layers for ``prob`` (a line's ``Problem`` or a ``Group``), the rest for the ``strings`` (their ``Problem``s, one
-    type), and what they call with the arguments it names (``THROUGH``), where one needs it."""
+def fill_calls(functions, prob, strings, table, attempt=False):
+    """Write into ``table`` (the ``calls`` of ``prob`` and of its strings) the addresses of the policy's
+    layers of ``functions`` (a kind's of ``bound``; ``CALLS``) for ``prob`` (a line's ``Problem`` or a
+    ``Group``), and of what the ``strings`` (their ``Problem``s, one type) call with the arguments it
+    names (``THROUGH``) where one needs it, each compiled or loaded for those types; ``attempt``: only
+    the address of ``attempt`` on its own (for ``_entry``'s single attempts)."""
     string = calls.type_of(strings[0])
     whole = calls.type_of(prob) if prob is not strings[0] else string
-    for name, (slot, rest) in CALLS.items():
-        if functions[name] is not None:
-            table[slot] = calls.address(functions[name], (whole if name in LAYERS else string,) + rest)
+    if attempt:
+        slot, rest = CALLS["attempt"]
+        table[slot] = calls.address(functions["attempt"], (whole,) + rest, types.int64)
+        return
+    for name in CALLS:
+        if name != "attempt" or name not in INLINED:  # inlined, the attempt on its own only where asked
+            slot, rest = CALLS[name]
+            table[slot] = calls.address(functions[name], (whole,) + rest, types.int64 if name == "attempt" else None)
     for name, (slot, types_of, needed) in THROUGH.items():
         if needed is None or any(needed(p) for p in strings):
             table[slot] = calls.address(THROUGH_FUNCTIONS[name], types_of(string))

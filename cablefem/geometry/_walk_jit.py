@@ -26,6 +26,7 @@ from collections import namedtuple
 import numpy as np
 from numba import njit
 
+from cablefem.geometry._search import WALK_STEPS
 from cablefem.geometry._vertex_normal_jit import (CLOSEST, DIRECTION, DIRECTION_GRADIENT, EVERYTHING, GAP,
     GAP_AND_DIRECTION, GAP_GRADIENT, GAP_ONLY, JIT, OUTPUTS, evaluate, is_inside, solve)
 
@@ -73,12 +74,12 @@ def _most_violated(s, t):
 
 
 @njit(**JIT)
-def project(xyz, surface, start, typical, steps, search, mode, result):
+def project(xyz, surface, start, typical, search, mode, result):
     """Locate points xyz (3, n) [m] on ``surface`` (a ``Surface``) from the ``Start`` of a previous
-    call, walking at most ``steps`` steps, and evaluate them into ``result.out`` (19, n). Its Python
-    and compiled callers pass the same types (the named tuples, ``steps`` not a literal): numba
-    compiles it once for both, where plain tuples from Python (0.5 us less to unbox each) compiled
-    it twice (2.5 s more of a first run).
+    call, walking at most ``WALK_STEPS`` steps (a constant of the compiled loop), and evaluate them into
+    ``result.out`` (19, n). Its Python and compiled callers pass the same types (the named tuples):
+    numba compiles it once for both, where plain tuples from Python (0.5 us less to unbox each)
+    compiled it twice (2.5 s more of a first run).
 
     With ``search``, writes each point's triangle (or -1: not placed, see the module docstring;
     also for points ``start.unheld`` or that moved farther than ``surface.size`` [m] of their
@@ -106,7 +107,7 @@ def project(xyz, surface, start, typical, steps, search, mode, result):
                 # edge until a prism holds the point at its nearest root (written out here:
                 # as a function of its own it ran three times slower)
                 previous, guess = -1, start_h[i]
-                for step in range(steps + 1):
+                for step in range(WALK_STEPS + 1):
                     s, t, h, inside, smallest, ok = solve(x0, x1, x2, rows, current, guess, safe[current])
                     if not ok:
                         break
@@ -118,7 +119,7 @@ def project(xyz, surface, start, typical, steps, search, mode, result):
                     # ahead < 0: the mesh's edge (the numpy search redirects it or searches);
                     # back: the walk circles a corner; the last step: lost (the numpy search
                     # tries the nearest centroids); a far root: the numpy search weighs it
-                    if ahead < 0 or ahead == previous or step == steps:
+                    if ahead < 0 or ahead == previous or step == WALK_STEPS:
                         break
                     previous, current, guess = current, ahead, np.nan
             triangle[i] = found

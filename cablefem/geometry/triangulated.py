@@ -36,7 +36,7 @@ import numpy as np
 
 from cablefem.errors import InputError
 from cablefem.geometry import _mesh, _vertex_normal as vn, _walk_jit as walk
-from cablefem.geometry._search import WALK_STEPS, PrismSearch
+from cablefem.geometry._search import PrismSearch
 from cablefem.geometry.base import Projection, Seabed
 
 #: calls remembered for warm starts (one per line sharing the seabed)
@@ -177,11 +177,11 @@ class TriangulatedSurface(PrismSearch, Seabed):
         if len(same) == 1:  # one line on this seabed: the kernel sees whether it moved far
             state = same[0]
             start = walk.Start(*self._walk_from(state, points))
-            lost = walk.project(xyz, surface, start, self._typical, WALK_STEPS, True, mode, result)
+            lost = walk.project(xyz, surface, start, self._typical, True, mode, result)
         if lost < 0:  # several lines, or one that moved far: start as _located does
             state = self._recall(points)[0]
             start = walk.Start(*self._walk_from(state, points))
-            lost = walk.project(xyz, surface, start, np.inf, WALK_STEPS, True, mode, result)
+            lost = walk.project(xyz, surface, start, np.inf, True, mode, result)
         beyond = np.zeros(n, dtype=bool)
         if lost:  # the numpy search from the same start, for the points the walk left
             rows = np.flatnonzero(triangle < 0)
@@ -191,7 +191,7 @@ class TriangulatedSurface(PrismSearch, Seabed):
                 last = (state[1][rows], state[2][rows], state[3][rows], moved <= self._size[state[1][rows]])
             found = self._locate(points[rows], self._table, self._nearest, last, self._below)
             triangle[rows], sth[0, rows], sth[1, rows], sth[2, rows], beyond[rows] = found
-            walk.project(xyz, surface, start, np.inf, WALK_STEPS, False, mode, result)
+            walk.project(xyz, surface, start, np.inf, False, mode, result)
         self._remember(state, points, triangle, beyond, sth[2], xyz=xyz)
         return triangle, sth, out
 
