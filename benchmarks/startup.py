@@ -30,34 +30,32 @@ examples/flume_flat.toml, each in a new process with an empty numba cache (NUMBA
 that it compiles everything the scene uses.
 
 First run after a fresh install (``python benchmarks/startup.py --first --repeats 1 --compare
-DIR``, DIR a checkout of the code before; one round, the 2-core machine at a load average of ~2):
+DIR``, DIR a checkout of the code before the calls by address; one round, the 2-core machine):
 
 | first ``cablefem run``, empty numba cache | wall [s] | CPU [s] |
 |---|---|---|
-| default scene, before | 92.8 | 92.3 |
-| default scene, now | 63.9 | 63.6 |
-| examples/flume_flat.toml, before | 89.0 | 88.3 |
-| examples/flume_flat.toml, now | 62.8 | 62.5 |
+| default scene, calls linked | 47.0 | 47.2 |
+| default scene, calls by address | 27.5 | 27.7 |
+| examples/flume_flat.toml, calls linked | 43.3 | 43.5 |
+| examples/flume_flat.toml, calls by address | 23.3 | 23.5 |
 
-The <= 30 s target is not met. Nearly all of it is numba compiling, and numba links the code of
-every callee into its caller and optimises and compiles it there again (``cablefem.compiled.steps``,
-"Compile time"): each of the policy's four layers (steps, advance, attempt, newton) costs 4-9 s, its
-own code and again what it calls, the element loop over the whole catalog among it. Two changes
-gave the gain above, with results bitwise unchanged and the compiled steps as fast: a line's policy without numba's runtime
-(its reference counting on the ~50 arrays of the ``Problem`` every inlined op copies: -15 s), and no
-Python or C wrappers on functions Python does not call (-8 s). Measured and not kept (numba's compile
-events, an empty NUMBA_CACHE_DIR, a 1 s run): LLVM's optnone on the policy's layers, -4 s (their
-linked callees are still optimised and emitted again, and their own loops run unoptimised);
-NUMBA_OPT=0 for everything, 152 s against 88 (unoptimised code is larger to link and emit at every
-layer); attempt and advance inlined into ``steps`` (numba's inline="always"), -2 s, and with newton too
-(three call sites) 153 s against 85 (LLVM's SROA on one function holding that many copies of the ``Problem``);
-the ops inlined by LLVM (forceinline) instead of numba, +19 s (each op its own unit linking the
-element loop); C wrappers off everywhere, no change; the outer layers without LLVM's module passes
-over the code they link (replacing a method of numba's code library, which numba does not
-document), -1 to -5 s, not kept for that. A catalog without the rope, bending, soil and
-Morison loads compiles the default scene in 7 s less: compiling only the loads a scene has (numba
-specialised per set of loads, ``steps.bound``'s way per scheme) is worth about that, more with the
-waves, anisotropic friction and Hermite branches, and costs a full compilation for every new set.
+The <= 30 s target is met. Nearly all of it is numba compiling, and numba links the code of every
+callee into its caller and optimises and emits it there again: each layer of the policy (steps,
+advance, attempt, newton) cost 4-9 s, its own code and again what it called, the element loop over
+the whole catalog among it. Now the layers call each other by address (``cablefem.compiled.calls``;
+``cablefem.compiled.steps``, "Compile time"), a string's evaluation calls the element loop, the
+seabed's projection and the node loads by address, and the element loop calls the loads' point
+kernels by address, each compiled where a scene has its load: every function is compiled once, and
+only what the scene uses. The price is the arguments of a call by address: the ``Problem``'s ~900
+words of array descriptors, once an attempt (``benchmarks/step_instructions.py``: the compiled steps
+1.011x in instructions). Where the time goes now (numba's compile events, a 1 s run): newton 3.2 s,
+attempt 2.3, the element loop 1.9, steps with advance 1.9, the triangulated walk 1.7, friction's
+anisotropic branch 1.3 (compiled with the isotropic friction it shares a kernel with). Measured and
+not kept before: LLVM's optnone on the layers (their loops then run unoptimised); NUMBA_OPT=0 for
+everything (152 s against 88: unoptimised code is larger to emit); newton inlined into attempt
+(three call sites: 153 s against 85); attempt inlined into advance, with advance into steps (the
+crossings once an attempt gone, 0.35 % fewer instructions, the first run +4.3 s: LLVM optimises the
+one large function more slowly than its parts).
 
 Last measured (medians of 7 rounds, byte-compiled, numba's cache warm, the 2-core machine):
 

@@ -26,7 +26,7 @@ have it for the List), and no literal arguments (each compiles a callee once mor
 numba links the code of every callee into its caller and optimises and compiles it there again, so
 each layer of the policy (steps, advance, attempt, newton) cost again all it called, the element
 loop among it, 3-5 s of the first run each: the layers call each other by address (``CALLS``,
-``cablefem.compiled.calls``), and so does a string's evaluation call the element loop, the seabed's
+``cablefem.compiled.calls``; ``advance`` is inlined into ``steps``), and so does a string's evaluation call the element loop, the seabed's
 projection and the node loads (``THROUGH``): each compiled once, its address in the ``calls`` of
 the ``Problem`` and ``Group`` (``fill_calls``), the projection and the node loads only for a scene
 that has them. Python calls one function (``_entry``: numba's Python wrapper unboxes the ``Problem``
@@ -85,14 +85,15 @@ Group = namedtuple("Group", "settings strings junctions dq leaders at balance sc
 
 #: the policy's layers called by address (``cablefem.compiled.calls``: compiled once, not again in each caller):
 #: the slot of each in the ``calls`` of the prob the policy steps (a line's ``Problem`` or a ``Group``), and
-#: the types of its arguments after the prob. ``newton`` from ``attempt``, ``steps`` and ``attempt`` from
-#: ``_entry``; ``attempt`` and ``advance`` are inlined into their one caller (``INLINED``). Only these: a call
-#: by address copies the ``Problem``'s array descriptors as arguments (~900 words), once an attempt here;
-#: the string's evaluation and Newton increment, once an iteration, are linked into ``newton`` (by address
-#: they cost the steps 2 % more instructions)
+#: the types of its arguments after the prob: ``newton`` from ``attempt``, ``attempt`` from ``advance`` (and
+#: on its own from ``_entry``), ``steps`` from ``_entry``. Only these: a call by address copies the
+#: ``Problem``'s array descriptors as arguments (~900 words), here once an attempt; the string's evaluation
+#: and Newton increment, once an iteration, are linked into ``newton`` (by address they cost the steps 0.7 %
+#: more instructions)
 CALLS = {"newton": (0, (types.boolean, types.int64)), "steps": (1, (types.float64[::1], types.float64[:, :, :, ::1])),
          "attempt": (2, (types.float64,))}
-#: the layers inlined into their one caller: ``advance`` into ``steps``, ``attempt`` into ``advance``
+#: the layers inlined into their one caller: ``advance`` into ``steps`` (``attempt`` into ``advance`` too would
+#: save 0.35 % of the steps' instructions and cost the first run 4 s: ``benchmarks/startup.py``)
 INLINED = ("advance",)
 
 
@@ -106,18 +107,18 @@ def _field(p, name):
     return p.types[p.fields.index(name)]
 
 
-_BAND = types.Array(types.float64, 2, "F")  # the band as the assembly writes it (``_evaluate_at``)
+_BAND = types.Array(types.float64, 2, "F")  # the band as the assembly writes it (``_assemble_at``)
 _FACTORS = types.UniTuple(types.float64, 3)
 
 
 def _assemble_types(p):
-    """What ``kernels.assemble`` takes from string p (``_evaluate_at``)."""
+    """What ``kernels.assemble`` takes from string p (``_assemble_at``)."""
     return (_field(p, "mesh"), _field(p, "bed"), _field(p, "water"), _field(p, "pts"), _field(p, "work"), _state(p),
             _FACTORS, types.boolean, types.boolean, _field(p, "X"), _BAND, _field(p, "all_elements"))
 
 
 def _nodes_types(p):
-    """What ``kernels.assemble_nodes`` takes from string p (``_evaluate_at``)."""
+    """What ``kernels.assemble_nodes`` takes from string p (``_assemble_at``)."""
     return (_field(p, "mesh"), _field(p, "water"), _field(p, "pts"), _field(p, "work"), _state(p), _FACTORS,
             types.boolean, _field(p, "X"), _BAND)
 
@@ -129,7 +130,7 @@ def _subtract_types(p):
 
 
 def _project_types(p):
-    """What ``seabed.project`` takes from string p (``_evaluate_at``)."""
+    """What ``seabed.project`` takes from string p (``_assemble_at``)."""
     return _field(p, "projector"), _field(p, "X"), _field(p, "mesh"), _field(p, "bed"), types.boolean
 
 
