@@ -57,18 +57,18 @@ everything (152 s against 88: unoptimised code is larger to emit); newton inline
 crossings once an attempt gone, 0.35 % fewer instructions, the first run +4.3 s: LLVM optimises the
 one large function more slowly than its parts).
 
-Last measured (medians of 7 rounds, byte-compiled, numba's cache warm, the 2-core machine):
+Last measured (medians of 5 rounds, byte-compiled, numba's cache warm, the 2-core machine; the
+code with its calls by address and the code before them alike, 0.80 and 0.81 s for the run):
 
-- ``cablefem run`` of the snap case 2.17 s of wall against 0.145 s for the MoorDyn script: 15x,
+- ``cablefem run`` of the snap case 0.80 s of wall against 0.062 s for the MoorDyn script: 13x,
   not the <= 2x target. The import floor is above 2x MoorDyn: numpy, scipy.sparse, scikit-fem and
-  numba take 1.04 s together, 1.61 s with numba's target initialised. The run's own work is
-  ~0.08 s of CPU; its kernels load in 0.08-0.1 s, after numba's target initialisation
-  (0.23-0.26 s). scipy.optimize (for the catenary start's ``brentq``, with the scipy.spatial it
-  imports: 0.12-0.15 s of CPU) stays. The levers left are numba's kernels compiled ahead of time
-  and one process for many runs (the studies, ``cablefem sweep``).
-- ``cablefem static`` of the default scene 1.21 s of wall, not the <= 0.5 s target: python,
-  numpy, scipy.sparse and scikit-fem alone take 0.41-0.51 s on an idle machine (numpy 0.23 s); a
-  scene this small is solved on the numpy path, without loading compiled kernels.
+  numba take 0.33 s together, 0.48 s with numba's target initialised; the other 0.32 s are
+  cablefem's own imports, the kernels' loading from the cache and the run. The levers left
+  are numba's kernels compiled ahead of time and one process for many runs (the studies,
+  ``cablefem sweep``).
+- ``cablefem static`` of the default scene 0.51 s of wall, not the <= 0.5 s target by 0.01 s:
+  python, numpy, scipy.sparse and scikit-fem alone take 0.24 s; a scene this small is solved on the
+  numpy path, without loading compiled kernels.
 """
 
 import argparse
