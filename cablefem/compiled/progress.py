@@ -12,7 +12,7 @@ import sys
 
 from numba.core import event
 
-NOTICE = ("cablefem: compiling the kernels this scene uses with numba (half a minute), once: "
+NOTICE = ("cablefem: compiling the kernels this scene uses with numba (half a minute to a minute), once: "
           "later runs load them from numba's cache")
 
 
