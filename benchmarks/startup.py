@@ -48,7 +48,8 @@ seabed's projection and the node loads by address, and the element loop calls th
 kernels by address, each compiled where a scene has its load: every function is compiled once, and
 only what the scene uses. The price is the arguments of a call by address: the ``Problem``'s ~900
 words of array descriptors, once an attempt (``benchmarks/step_instructions.py``: the compiled steps
-1.011x in instructions). Where the time goes now (numba's compile events, a 1 s run): newton 3.2 s,
+1.011x in instructions). Where the time goes now (``python benchmarks/compile_profile.py``: numba's
+compile events, a 1 s run, an idle machine): newton 3.2 s,
 attempt 2.3, the element loop 1.9, steps with advance 1.9, the triangulated walk 1.7, friction's
 anisotropic branch 1.3 (compiled with the isotropic friction it shares a kernel with). Measured and
 not kept before: LLVM's optnone on the layers (their loops then run unoptimised); NUMBA_OPT=0 for

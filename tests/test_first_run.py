@@ -15,7 +15,7 @@ ROOT = Path(__file__).resolve().parents[1]
 #: two of the compiled steps' kernels called from Python, the copies they make checked
 CODE = """
 import numpy as np
-from cablefem.compiled.steps import _copy_flat, _copy_rows
+from cablefem.compiled.line_ops import _copy_flat, _copy_rows
 rows, flat = np.zeros((4, 3)), np.zeros(5)
 _copy_rows(rows, np.arange(12.0).reshape(4, 3))
 _copy_flat(flat, np.arange(5.0))

@@ -273,7 +273,7 @@ def test_residual_line_search_stops_newton_cycling_in_snap_loads():
 
 def test_compiled_adaptive_steps_hold_the_tolerance_as_the_python_steps():
     """Error-controlled steps (``policy.attempt``'s INACCURATE, the tension error of
-    ``Integrator.tension_error`` and ``steps._tension_error``) on the flume's snap: the compiled
+    ``Integrator.tension_error`` and ``line_ops._tension_error``) on the flume's snap: the compiled
     steps end on 1/64 splits of an output interval (``problem.ADAPTIVE_PARTS``) where the Python
     ops do not, so their steps differ (measured 1253 against 1051, 71 and 125 rejected); at the same
     tolerance both rejected steps and their forces agree within 1 % of the peak (measured 0.29 %)."""

@@ -184,6 +184,7 @@ def bound(scheme):
         original = getattr(group_ops if name.startswith("group_") else line_ops, name)
         function = FunctionType(original.py_func.__code__, namespace, name, original.py_func.__defaults__)
         function.__qualname__ = f"{tag}.{name}"
+        function.__module__ = original.__module__  # (the namespace's __name__ is group_ops')
         options = {key: value for key, value in original.targetoptions.items() if key != "nopython"}
         namespace[name] = njit(cache=True, **options)(function)
     functions = {}

@@ -5,8 +5,9 @@ The functions here are plain Python in numba's subset and are never called from 
 ``bind(ops)`` makes a set of them whose calls into the physics go to an ``ops`` module. Two such
 sets run the solver (docs/architecture.md, "The compiled path"):
 
-- ``cablefem.compiled.steps`` binds them to its compiled ops and compiles them with numba (the BDF2 and
-  generalised-alpha steps of a line on the compiled kernel, many steps in one call);
+- ``cablefem.compiled.steps`` binds them to the compiled ops (``line_ops``, ``group_ops``) and compiles
+  them with numba (the BDF2 and generalised-alpha steps of a line on the compiled kernel, many steps in
+  one call);
 - ``cablefem.dynamics.integrator`` binds them to Python ops (``cablefem.dynamics.python_ops``) for any integrator and
   either assembly (the compiled kernel per evaluation, or the numpy loads).
 
