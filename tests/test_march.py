@@ -65,9 +65,9 @@ def test_compiled_steps_equal_the_python_steps(order, elements, dt, motion, iter
 
 
 def test_one_compiled_attempt_takes_the_python_attempts_iterations_to_its_state():
-    """One attempt on its own (``Packer.attempt``: the policy's attempt by address, compiled only where
-    Python asks for one, ``steps.fill_calls``) and on the Python ops: the same iterations, the same
-    state to round-off, snap loads on a flat flume floor."""
+    """One attempt on its own (``Packer.attempt``: the policy's attempt by address from ``_entry``)
+    and on the Python ops: the same iterations, the same state to round-off, snap loads on a flat
+    flume floor."""
     scene = flume_scene("flat", "dynamic", 20, 1, 1.0, 0.05)
     runs = []
     for compiled_steps in (True, False):
@@ -80,6 +80,26 @@ def test_one_compiled_attempt_takes_the_python_attempts_iterations_to_its_state(
     (X1, V1, t1, s1), (X2, V2, t2, s2) = runs
     assert t1 == t2 == pytest.approx(0.1) and s1 == s2 and s1["newton_iterations"] >= 2
     assert np.max(np.abs(X1 - X2)) <= 1e-9 and np.max(np.abs(V1 - V2)) <= 1e-7
+
+
+def test_a_settings_field_of_another_type_fills_the_call_table_again():
+    """A Packer's ``calls`` hold the addresses of code compiled for its Problems' type: a settings field
+    that becomes an int between runs (where it was a float) fills them again (``problem.type_key``),
+    and the steps take the numbers they take with the float; strided times step as their copy."""
+    scene = flume_scene("flat", "dynamic", 20, 1, 2.0, 0.04)
+    times = step_times(0.0, 2.0, 0.04)
+    runs = []
+    for value in (1.0, 1):
+        integ = integrator(scene, 0.04, True)
+        integ.march(times[:10])
+        packer = integ.stepper().packer
+        packer.settings = packer.settings._replace(min_damping=value)
+        runs.append(integ.march(times[11::2]))  # every other time: a strided array
+    assert np.array_equal(runs[0], runs[1]) and np.all(np.isfinite(runs[0]))
+    again = integrator(scene, 0.04, True)
+    again.march(times[:10])
+    again.stepper().packer.settings = again.stepper().packer.settings._replace(min_damping=1.0)
+    assert np.array_equal(again.march(times[11::2].copy()), runs[0])
 
 
 def test_branch_corrections_save_evaluations_and_keep_the_solution():

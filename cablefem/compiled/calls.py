@@ -17,10 +17,10 @@ first-class function by its address): the callee's exceptions reach the caller. 
 compiled for declared argument types, to which the caller's values are converted, and ``address``
 compiles (or loads) it for the same types, so that the address Python writes is that of the code
 the caller was compiled against. Both sides must agree on what the callee returns:
-``cablefem.compiled.cache`` deletes every cached kernel when a source of one changes, so a cached
-caller never meets a changed callee. It looks after numba's default cache only: a NUMBA_CACHE_DIR
-of one's own must be emptied after an edit of a kernel source (a stale caller could then call a
-changed callee with the old types, where a linked callee ran its old code).
+``cablefem.compiled.cache`` deletes every cached kernel when a source of one changes, wherever
+numba caches them, so a cached caller never meets a changed callee; and Python fills a ``calls``
+table again when the Problems' type changes (``cablefem.compiled.problem.type_key``). A callee
+whose return type numba infers as optional (None on some path) cannot be called this way.
 """
 
 import numba

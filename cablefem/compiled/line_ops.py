@@ -75,11 +75,12 @@ THROUGH = {"assemble": (LAYER_SLOTS, _assemble_types, None),
 THROUGH_FUNCTIONS = {"assemble": kernels.assemble, "assemble_nodes": kernels.assemble_nodes,
                      "subtract_node_loads": kernels.subtract_node_loads, "project": project}
 
-_assemble_kernel = calls.through(kernels.assemble, _assemble_types, THROUGH["assemble"][0])
-_nodes_kernel = calls.through(kernels.assemble_nodes, _nodes_types, THROUGH["assemble_nodes"][0], types.none)
-_subtract_kernel = calls.through(kernels.subtract_node_loads, _subtract_types, THROUGH["subtract_node_loads"][0],
-                                 types.none)
-_project_kernel = calls.through(project, _project_types, THROUGH["project"][0], types.int64)
+#: what each returns (declared: checked where its address is written, ``calls.address``)
+THROUGH_RETURNS = {"assemble": types.none, "assemble_nodes": types.none, "subtract_node_loads": types.none,
+                   "project": types.int64}
+_assemble_kernel, _nodes_kernel, _subtract_kernel, _project_kernel = (
+    calls.through(THROUGH_FUNCTIONS[name], THROUGH[name][1], THROUGH[name][0], THROUGH_RETURNS[name])
+    for name in ("assemble", "assemble_nodes", "subtract_node_loads", "project"))
 
 
 #: the scheme's arithmetic, bound per scheme by ``bound`` (``cablefem.dynamics.scheme``)

@@ -2,11 +2,12 @@
 strings (``cablefem.dynamics.group``: their integrators, schemes, compiled kernels, seabed and
 junctions) into the compiled ``Group`` the policy runs on, and hands the results back."""
 
+import numba
 import numpy as np
 
 from cablefem.compiled import kernels
 from cablefem.compiled.seabed import GRID, PLANE, TRIANGULATED, Projector
-from cablefem.compiled.steps import CALLS, FRACTIONS, SLOTS, Group, Problem, bound, fill_calls, strings_list
+from cablefem.compiled.steps import FRACTIONS, SLOTS, Group, Problem, bound, fill_calls, strings_list
 
 #: adaptive steps in the compiled loop end on this many even splits of an output interval (smaller
 #: ones go on in Python, where the ends are placed anywhere)
@@ -31,6 +32,18 @@ def projector_kind(integ):
     if isinstance(seabed, TriangulatedSurface) and seabed.compiled:
         return TRIANGULATED
     return None
+
+
+def type_key(problem):
+    """A key of ``problem``'s numba type, cheap enough for every run of steps: the fingerprint numba's
+    dispatcher selects its compiled code by (~10 us; ``numba.typeof``, its fallback, takes ~2 ms).
+    The addresses in a ``calls`` table are those of code compiled for one type: a Problem of another
+    (a settings field that became an int) needs the table filled again."""
+    try:
+        from numba._dispatcher import compute_fingerprint
+    except ImportError:  # not numba's public face: its fallback is
+        return numba.typeof(problem)
+    return compute_fingerprint(problem)
 
 
 class _String:
@@ -151,7 +164,7 @@ class Packer:
         self.junctions = J
         #: the addresses of what the compiled steps call (``steps.CALLS``), shared by every Problem and Group
         self.calls = np.zeros(SLOTS, dtype=np.int64)
-        self.called = False
+        self.called = None  # the type key the table was filled for (``type_key``)
 
     @classmethod
     def for_group(cls, group):
@@ -181,9 +194,10 @@ class Packer:
         self.problems = [string.problem(self.settings, *each, self.calls) for string, each in zip(self.strings, ends)]
         prob = self.problems[0] if self.kind == "line" else Group(self.settings, strings_list(self.problems),
                                                                    self.junctions, *self.scratch, self.calls)
-        if not self.called:  # once: the addresses, for the types of these (``steps.fill_calls``)
+        key = type_key(self.problems[0])  # the strings' type (and with it the Group's): the table's
+        if key != self.called:
             fill_calls(self.functions, prob, self.problems, self.calls)
-            self.called = True
+            self.called = key
         return prob
 
     def finish(self):
@@ -194,7 +208,7 @@ class Packer:
     def run(self, times, forces):
         """Steps of the strings to ``times`` (m,) as ``policy.steps`` takes them, their forces into
         ``forces`` (m, strings, 2, 3). Returns (status, k, the size of the attempt that stopped)."""
-        times = np.asarray(times, dtype=float)
+        times = np.ascontiguousarray(times, dtype=float)  # the type the compiled steps take (``steps.CALLS``)
         prob = self.pack(self.ends(times))
         status, k = self.functions["entry"](prob, times, forces, 0.0)
         self.finish()
@@ -210,8 +224,6 @@ class Packer:
                           for string in self.strings])
         for each in self.problems:
             each.target[:] = each.ends[0]
-        if not self.calls[CALLS["attempt"][0]]:  # the attempt on its own: compiled where Python asks for one
-            fill_calls(self.functions, prob, self.problems, self.calls, attempt=True)
         outcome, _ = self.functions["entry"](prob, NO_TIMES, NO_FORCES, t1 - t)
         self.finish()
         return outcome

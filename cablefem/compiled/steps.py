@@ -43,7 +43,7 @@ from numba import njit, types
 from numba.typed import List
 
 from cablefem.compiled import calls, group_ops, line_ops
-from cablefem.compiled.line_ops import LAYER_SLOTS, THROUGH, THROUGH_FUNCTIONS
+from cablefem.compiled.line_ops import LAYER_SLOTS, THROUGH, THROUGH_FUNCTIONS, THROUGH_RETURNS
 from cablefem.dynamics import policy
 
 #: a step of the compiled loop may be halved this many times (the ends' positions at the
@@ -194,8 +194,7 @@ def bound(scheme):
             setattr(ops, name, namespace[prefix + name])
         functions[kind] = policy.bind(ops, compile=_compiler(kind), name=f"{kind}_{tag}", link=_link)
         ops.attempt = _link("attempt", functions[kind]["attempt"])
-        slot, rest = CALLS["attempt"]  # compiled on its own only where Python takes one attempt (``fill_calls``)
-        entry = {"_attempt_call": calls.by_address(functions[kind]["attempt"], rest, slot, types.int64),
+        entry = {"_attempt_call": ops.attempt,
                  "_steps_call": _link("steps", functions[kind]["steps"])}
         function = FunctionType(_entry.__code__, dict(vars(module), **entry), "entry")
         function.__qualname__ = f"{kind}_{tag}.entry"
@@ -213,22 +212,15 @@ def _link(name, function):
     return calls.by_address(function, rest, slot)
 
 
-def fill_calls(functions, prob, strings, table, attempt=False):
+def fill_calls(functions, prob, strings, table):
     """Write into ``table`` (the ``calls`` of ``prob`` and of its strings) the addresses of the policy's
     layers of ``functions`` (a kind's of ``bound``; ``CALLS``) for ``prob`` (a line's ``Problem`` or a
     ``Group``), and of what the ``strings`` (their ``Problem``s, one type) call with the arguments it
-    names (``THROUGH``) where one needs it, each compiled or loaded for those types; ``attempt``: only
-    the address of ``attempt`` on its own (for ``_entry``'s single attempts)."""
+    names (``THROUGH``) where one needs it, each compiled or loaded for those types."""
     string = calls.type_of(strings[0])
     whole = calls.type_of(prob) if prob is not strings[0] else string
-    if attempt:
-        slot, rest = CALLS["attempt"]
-        table[slot] = calls.address(functions["attempt"], (whole,) + rest, types.int64)
-        return
-    for name in CALLS:
-        if name != "attempt" or name not in INLINED:  # inlined, the attempt on its own only where asked
-            slot, rest = CALLS[name]
-            table[slot] = calls.address(functions[name], (whole,) + rest, types.int64 if name == "attempt" else None)
+    for name, (slot, rest) in CALLS.items():
+        table[slot] = calls.address(functions[name], (whole,) + rest)
     for name, (slot, types_of, needed) in THROUGH.items():
         if needed is None or any(needed(p) for p in strings):
-            table[slot] = calls.address(THROUGH_FUNCTIONS[name], types_of(string))
+            table[slot] = calls.address(THROUGH_FUNCTIONS[name], types_of(string), THROUGH_RETURNS[name])
