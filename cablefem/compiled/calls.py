@@ -23,36 +23,31 @@ table again when the Problems' type changes (``cablefem.compiled.problem.type_ke
 whose return type numba infers as optional (None on some path) cannot be called this way.
 """
 
-import numba
 from llvmlite import ir
 from numba.core import cgutils, types
 from numba.extending import intrinsic
 
 
-def address(dispatcher, argtypes, restype=None):
-    """The address of ``dispatcher``'s compiled code for ``argtypes`` (numba types), compiled or loaded
-    from numba's cache first; ``restype``: what its callers were compiled to expect it to return
-    (a TypeError if it does not)."""
+def _compiled(dispatcher, argtypes):
+    """``dispatcher``'s compiled code for ``argtypes`` (numba types), compiled or loaded from numba's cache."""
     argtypes = tuple(argtypes)
     dispatcher.compile(argtypes)
-    result = dispatcher.overloads[argtypes]
+    return dispatcher.overloads[argtypes]
+
+
+def address(dispatcher, argtypes, restype=None):
+    """The address of ``dispatcher``'s compiled code for ``argtypes`` (``_compiled``); ``restype``: what its
+    callers were compiled to expect it to return (a TypeError if it does not)."""
+    result = _compiled(dispatcher, argtypes)
     if restype is not None and result.signature.return_type != restype:
         raise TypeError(f"{dispatcher.__name__} returns {result.signature.return_type}, its callers by address "
                         f"expect {restype}")
     return result.library.get_pointer_to_function(result.fndesc.llvm_func_name)
 
 
-def type_of(value):
-    """numba's type of ``value``, or ``value`` if it is one."""
-    return value if isinstance(value, types.Type) else numba.typeof(value)
-
-
 def _returns(dispatcher, argtypes, restype):
     """``restype``, or, if None, what ``dispatcher`` returns for ``argtypes`` (compiling it)."""
-    if restype is not None:
-        return restype
-    dispatcher.compile(argtypes)
-    return dispatcher.overloads[argtypes].signature.return_type
+    return restype if restype is not None else _compiled(dispatcher, argtypes).signature.return_type
 
 
 def _call(context, builder, prob, value, slot, restype, argtypes, arguments):

@@ -7,6 +7,8 @@ policy (``steps.bound``, which copies those that read the scheme); ``cablefem.co
 loops them over a group's strings.
 """
 
+from collections import namedtuple
+
 import numpy as np
 from numba import njit, types
 from numba import uint64 as _index  # an unsigned index: no wrap-around fix-up (cablefem.compiled.banded)
@@ -65,22 +67,18 @@ def _on_seabed(p):
     return p.projector.kind != PLANE
 
 
-#: what a string's ``Problem`` calls by address with the arguments it names (``calls.through``): its slot,
-#: the types of the arguments, and whether a string needs it (its address is written, and the function
-#: compiled, only where one of the group's does)
-THROUGH = {"assemble": (LAYER_SLOTS, _assemble_types, None),
-           "assemble_nodes": (LAYER_SLOTS + 1, _nodes_types, _with_nodes),
-           "subtract_node_loads": (LAYER_SLOTS + 2, _subtract_types, _with_nodes),
-           "project": (LAYER_SLOTS + 3, _project_types, _on_seabed)}
-THROUGH_FUNCTIONS = {"assemble": kernels.assemble, "assemble_nodes": kernels.assemble_nodes,
-                     "subtract_node_loads": kernels.subtract_node_loads, "project": project}
-
-#: what each returns (declared: checked where its address is written, ``calls.address``)
-THROUGH_RETURNS = {"assemble": types.none, "assemble_nodes": types.none, "subtract_node_loads": types.none,
-                   "project": types.int64}
+#: a function a string's ``Problem`` calls by address with the arguments it names (``calls.through``): its
+#: slot in ``calls``, the function, the types of its arguments (of the Problem's type), what it returns
+#: (declared: checked where its address is written, ``calls.address``) and whether a string needs it
+#: (None: every one; its address is written, and the function compiled, only where one of the group's does)
+Through = namedtuple("Through", "slot function types_of returns needed")
+THROUGH = {"assemble": Through(LAYER_SLOTS, kernels.assemble, _assemble_types, types.none, None),
+           "assemble_nodes": Through(LAYER_SLOTS + 1, kernels.assemble_nodes, _nodes_types, types.none, _with_nodes),
+           "subtract_node_loads": Through(LAYER_SLOTS + 2, kernels.subtract_node_loads, _subtract_types, types.none,
+                                          _with_nodes),
+           "project": Through(LAYER_SLOTS + 3, project, _project_types, types.int64, _on_seabed)}
 _assemble_kernel, _nodes_kernel, _subtract_kernel, _project_kernel = (
-    calls.through(THROUGH_FUNCTIONS[name], THROUGH[name][1], THROUGH[name][0], THROUGH_RETURNS[name])
-    for name in ("assemble", "assemble_nodes", "subtract_node_loads", "project"))
+    calls.through(t.function, t.types_of, t.slot, t.returns) for t in THROUGH.values())
 
 
 #: the scheme's arithmetic, bound per scheme by ``bound`` (``cablefem.dynamics.scheme``)

@@ -34,16 +34,18 @@ def projector_kind(integ):
     return None
 
 
+try:
+    from numba._dispatcher import compute_fingerprint as _fingerprint
+except ImportError:  # not numba's public face: its fallback is
+    _fingerprint = numba.typeof
+
+
 def type_key(problem):
     """A key of ``problem``'s numba type, cheap enough for every run of steps: the fingerprint numba's
     dispatcher selects its compiled code by (~10 us; ``numba.typeof``, its fallback, takes ~2 ms).
     The addresses in a ``calls`` table are those of code compiled for one type: a Problem of another
     (a settings field that became an int) needs the table filled again."""
-    try:
-        from numba._dispatcher import compute_fingerprint
-    except ImportError:  # not numba's public face: its fallback is
-        return numba.typeof(problem)
-    return compute_fingerprint(problem)
+    return _fingerprint(problem)
 
 
 class _String:

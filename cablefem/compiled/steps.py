@@ -39,11 +39,12 @@ import sys
 from collections import namedtuple
 from types import FunctionType, ModuleType
 
+import numba
 from numba import njit, types
 from numba.typed import List
 
 from cablefem.compiled import calls, group_ops, line_ops
-from cablefem.compiled.line_ops import LAYER_SLOTS, THROUGH, THROUGH_FUNCTIONS, THROUGH_RETURNS
+from cablefem.compiled.line_ops import LAYER_SLOTS, THROUGH
 from cablefem.dynamics import policy
 
 #: a step of the compiled loop may be halved this many times (the ends' positions at the
@@ -217,10 +218,10 @@ def fill_calls(functions, prob, strings, table):
     layers of ``functions`` (a kind's of ``bound``; ``CALLS``) for ``prob`` (a line's ``Problem`` or a
     ``Group``), and of what the ``strings`` (their ``Problem``s, one type) call with the arguments it
     names (``THROUGH``) where one needs it, each compiled or loaded for those types."""
-    string = calls.type_of(strings[0])
-    whole = calls.type_of(prob) if prob is not strings[0] else string
+    string = numba.typeof(strings[0])
+    whole = numba.typeof(prob) if prob is not strings[0] else string
     for name, (slot, rest) in CALLS.items():
         table[slot] = calls.address(functions[name], (whole,) + rest)
-    for name, (slot, types_of, needed) in THROUGH.items():
-        if needed is None or any(needed(p) for p in strings):
-            table[slot] = calls.address(THROUGH_FUNCTIONS[name], types_of(string), THROUGH_RETURNS[name])
+    for entry in THROUGH.values():
+        if entry.needed is None or any(entry.needed(p) for p in strings):
+            table[entry.slot] = calls.address(entry.function, entry.types_of(string), entry.returns)
